@@ -1,0 +1,71 @@
+// The scene every backend renders: one triangle soup in world space (all node transforms
+// baked), materials, textures, punctual lights and cameras. Built by the glTF loader or in code
+// (analytic test scenes); nothing downstream knows about glTF.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "core/math/math.h"
+#include "core/scene/texture.h"
+
+namespace sst {
+
+// glTF metallic-roughness material. Texture indices are -1 when absent.
+struct Material {
+  std::string name;
+  vec3 base_color{1.0f};  // linear RGB factor
+  int base_color_texture = -1;
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  int metallic_roughness_texture = -1;  // glTF: G = roughness, B = metallic (linear)
+  vec3 emission{0.0f};  // emissiveFactor * KHR_materials_emissive_strength (radiance)
+  int emissive_texture = -1;
+  bool double_sided = false;
+};
+
+enum class LightType { Point, Spot, Directional };
+
+// KHR_lights_punctual, radiometric: point/spot intensity in W/sr, directional in W/m^2.
+struct PunctualLight {
+  std::string name;
+  LightType type = LightType::Point;
+  vec3 position{0.0f};
+  vec3 direction{0.0f, 0.0f, -1.0f};  // unit; the direction the light travels (spot, directional)
+  vec3 intensity{1.0f};               // color * intensity
+  float cos_inner = 1.0f;             // spot cone cosines (glTF inner/outer cone angles)
+  float cos_outer = 0.0f;
+};
+
+struct Camera {
+  std::string name;
+  vec3 eye{0.0f};
+  vec3 forward{0.0f, 0.0f, -1.0f};  // unit
+  vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
+  float yfov = 0.8f;                // vertical field of view, radians
+  float aspect = 0.0f;              // width / height; 0 when the file gives none
+};
+
+struct Scene {
+  std::string source;  // file path, or "builtin:<name>" / "generated:<name>"
+
+  // Geometry: indexed triangles; normals and uvs are per vertex (uvs zero when absent).
+  std::vector<vec3> positions;
+  std::vector<vec3> normals;
+  std::vector<vec2> uvs;
+  std::vector<uvec3> triangles;
+  std::vector<uint32_t> triangle_material;  // index into materials, one per triangle
+
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<PunctualLight> lights;
+  std::vector<Camera> cameras;
+
+  Bounds3 bounds;  // of all vertices
+  std::vector<std::string> warnings;  // non-fatal loader findings, reported in the JSON record
+
+  // Recomputes bounds; the loader and code-built scenes call it once geometry is final.
+  void finalize_bounds();
+  bool material_emits(uint32_t m) const;
+};
+
+}  // namespace sst

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# Installs sst's build and test dependencies from Debian 12 packages (run as root or with sudo).
+# Nothing is downloaded at build time; this is the only install step the README and CI need.
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" != 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+PACKAGES=(
+  build-essential cmake ninja-build pkg-config git
+  libembree-dev libtbb-dev
+  libopenimageio-dev openimageio-tools libopenexr-dev
+  libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libglm-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools
+  parallel
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+echo "sst: dependencies installed"

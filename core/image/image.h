@@ -31,22 +31,33 @@ struct Layer {
 };
 
 // Linear -> display: multiply by 2^exposure, clamp to [0,1], sRGB-encode. Keeps channel count.
+// Non-finite values become 0.
 Image to_display(const Image& linear, float exposure = 0.0f);
 // Display (sRGB-encoded) -> linear.
 Image from_display(const Image& display);
 float srgb_encode(float linear);
 float srgb_decode(float encoded);
 
-// Writes by extension: .exr (half? no: float RGB + every layer), .hdr (RGB), .png (display RGB,
-// 8-bit). Writes to a temporary file and renames it, so a reader never sees half a file.
-// Throws sst::Error naming the path on failure or on an unknown extension.
+// Writes by extension: .exr (32-bit float, one part: R,G,B plus <layer>.R/G/B or <layer>.Y per
+// layer; layers must match the image's size), .hdr (RGB), .png (8-bit to_display(rgb, exposure),
+// rounded to nearest; exposure is used only here). Writes a temporary file beside the target
+// and renames it, so a reader never sees half a file; creates missing parent folders.
+// Non-finite values are written as 0. Throws sst::Error naming the path on failure or on an
+// unknown extension.
 void write_image(const std::string& path, const Image& rgb, const std::vector<Layer>& layers = {},
                  float exposure = 0.0f);
 
 // Reads RGB (alpha and extra layers dropped) as linear floats. A PNG/JPEG is display-encoded
 // as stored and is decoded to linear; `was_display` tells the caller which it was.
 Image read_image(const std::string& path, bool* was_display = nullptr);
-// Reads one named layer of an EXR written by write_image (e.g. "indirect"); throws if absent.
+// Reads one named layer of an EXR written by write_image (e.g. "indirect"): 3 channels, or 1 for
+// a <layer>.Y layer. Throws if absent, naming the layers the file has.
 Image read_layer(const std::string& path, const std::string& layer);
+
+// Like read_image, but returns the values as stored (no sRGB decoding of PNG/JPEG), so that
+// metrics on display images see exactly the file's 8-bit levels.
+Image read_image_stored(const std::string& path, bool* was_display = nullptr);
+// Names of the extra layers of an image file ("albedo", "indirect", ...); empty for plain RGB.
+std::vector<std::string> list_layers(const std::string& path);
 
 }  // namespace sst

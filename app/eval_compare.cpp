@@ -1,0 +1,96 @@
+#include "app/eval_compare.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "core/image/image.h"
+#include "core/metrics/metrics.h"
+#include "core/metrics/same_shape.h"
+#include "core/util/error.h"
+
+namespace sst::app {
+namespace {
+
+struct Input {
+  Image values;  // as stored: display values for PNG/JPEG, linear otherwise
+  bool display = false;
+};
+
+Input load(const std::string& path, const std::string& layer) {
+  if (!layer.empty()) return {read_layer(path, layer), false};
+  Input in;
+  in.values = read_image_stored(path, &in.display);
+  return in;
+}
+
+Image linear_of(const Input& in) { return in.display ? from_display(in.values) : in.values; }
+
+// Two PNGs are compared on their stored 8-bit levels; any other pair on linear values.
+ImageMetrics metrics_of(const Input& test, const Input& reference) {
+  if (test.display && reference.display) return compare_images(test.values, reference.values, true);
+  return compare_images(linear_of(test), linear_of(reference), false);
+}
+
+void print_table(const CompareArgs& args, const ImageMetrics& m) {
+  std::printf("test       %s%s\n", args.test.c_str(),
+              args.layer.empty() ? "" : (" [" + args.layer + "]").c_str());
+  std::printf("reference  %s%s\n", args.reference.c_str(),
+              args.layer.empty() ? "" : (" [" + args.layer + "]").c_str());
+  std::printf("size       %dx%d\n", m.width, m.height);
+  std::printf("rmse       %.6g\n", m.rmse);
+  std::printf("rel_mse    %.6g\n", m.rel_mse);
+  std::printf("psnr       %.4g dB\n", m.psnr);
+  std::printf("ssim       %.6f\n", m.ssim);
+  std::printf("mae        %.6g\n", m.mae);
+  std::printf("mean_test  %10.6g %10.6g %10.6g\n", m.mean_test.x, m.mean_test.y, m.mean_test.z);
+  std::printf("mean_ref   %10.6g %10.6g %10.6g\n", m.mean_reference.x, m.mean_reference.y,
+              m.mean_reference.z);
+  if (m.nonfinite_test || m.nonfinite_reference)
+    std::printf("nonfinite  %zu test, %zu reference pixels (counted as 0)\n", m.nonfinite_test,
+                m.nonfinite_reference);
+}
+
+void print_json(const CompareArgs& args, const ImageMetrics& m) {
+  nlohmann::json out = to_json(m);
+  out["test"] = args.test;
+  out["reference"] = args.reference;
+  out["layer"] = args.layer.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.layer);
+  out["heatmap"] = args.heatmap.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.heatmap);
+  std::printf("%s\n", out.dump(2).c_str());
+}
+
+}  // namespace
+
+CLI::App* add_compare_command(CLI::App& app, CompareArgs& args) {
+  CLI::App* cmd = app.add_subcommand("compare", "Metrics of a test image against a reference");
+  cmd->add_option("test", args.test, "Test image (.exr, .hdr, .png)")->required();
+  cmd->add_option("reference", args.reference, "Reference image")->required();
+  cmd->add_flag("--json", args.json, "Print one JSON object instead of a table");
+  cmd->add_option("--heatmap", args.heatmap,
+                  "Write the per-pixel relative error as a heat map (e.g. err.png)");
+  cmd->add_option("--heatmap-max", args.heatmap_max, "Relative error shown as the brightest colour")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--layer", args.layer, "Compare this EXR layer (e.g. indirect) of both files");
+  return cmd;
+}
+
+int run_compare(const CompareArgs& args) {
+  const Input test = load(args.test, args.layer);
+  const Input reference = load(args.reference, args.layer);
+  if (test.values.width != reference.values.width || test.values.height != reference.values.height ||
+      test.values.channels != reference.values.channels)
+    throw Error("cannot compare " + args.test + " (" + shape_string(test.values) + ") with " +
+                args.reference + " (" + shape_string(reference.values) + "): sizes differ");
+  const ImageMetrics m = metrics_of(test, reference);
+  if (!args.heatmap.empty())
+    write_image(args.heatmap, error_heatmap(linear_of(test), linear_of(reference), args.heatmap_max));
+  if (args.json)
+    print_json(args, m);
+  else
+    print_table(args, m);
+  return 0;
+}
+
+}  // namespace sst::app

@@ -1,0 +1,97 @@
+#include "core/accel/embree_accel.h"
+
+#include <string>
+
+#include "core/util/error.h"
+
+namespace sst {
+EmbreeAccel::EmbreeAccel(const Scene& scene) {
+  device_ = rtcNewDevice("");
+  if (!device_) throw Error("could not create an Embree device");
+  scene_ = rtcNewScene(device_);
+  rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+
+  RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+  // Embree reads vertices with 16-byte loads, so the buffer it allocates has the padding it needs.
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), scene.positions.size()));
+  for (size_t i = 0; i < scene.positions.size(); ++i) {
+    vertices[3 * i + 0] = scene.positions[i].x;
+    vertices[3 * i + 1] = scene.positions[i].y;
+    vertices[3 * i + 2] = scene.positions[i].z;
+  }
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), scene.triangles.size()));
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    indices[3 * i + 0] = scene.triangles[i].x;
+    indices[3 * i + 1] = scene.triangles[i].y;
+    indices[3 * i + 2] = scene.triangles[i].z;
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene_, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene_);
+  // Embree reports failures (out of memory, invalid buffers) through the device, not by
+  // exceptions: check once after the build, where they would surface.
+  if (RTCError code = rtcGetDeviceError(device_); code != RTC_ERROR_NONE)
+    throw Error("Embree could not build the acceleration structure (error " + std::to_string(int(code)) + ")");
+
+  // 1e-5 of the diagonal: far below any feature the scenes model, far above float noise.
+  float diagonal = scene.bounds.diagonal();
+  epsilon_ = 1e-5f * (diagonal > 0.0f && std::isfinite(diagonal) ? diagonal : 1.0f);
+}
+
+EmbreeAccel::~EmbreeAccel() {
+  if (scene_) rtcReleaseScene(scene_);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+Hit EmbreeAccel::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = ray.origin.x;
+  rh.ray.org_y = ray.origin.y;
+  rh.ray.org_z = ray.origin.z;
+  rh.ray.dir_x = ray.direction.x;
+  rh.ray.dir_y = ray.direction.y;
+  rh.ray.dir_z = ray.direction.z;
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.time = 0.0f;
+  rh.ray.mask = UINT32_MAX;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  Hit hit;
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return hit;
+  hit.t = rh.ray.tfar;
+  hit.triangle = rh.hit.primID;
+  hit.barycentric = {rh.hit.u, rh.hit.v};
+  return hit;
+}
+
+bool EmbreeAccel::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  r.org_x = ray.origin.x;
+  r.org_y = ray.origin.y;
+  r.org_z = ray.origin.z;
+  r.dir_x = ray.direction.x;
+  r.dir_y = ray.direction.y;
+  r.dir_z = ray.direction.z;
+  r.tnear = ray.tmin;
+  r.tfar = ray.tmax;
+  r.time = 0.0f;
+  r.mask = UINT32_MAX;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(scene_, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+}  // namespace sst

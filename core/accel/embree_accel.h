@@ -1,0 +1,66 @@
+// Ray queries against the scene's triangles with Embree 3: closest hit and occlusion.
+// Offsets that keep secondary rays off their own surface are relative to the scene size
+// (`ray_epsilon()`), never absolute, so millimetre and kilometre scenes behave the same.
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <cstdint>
+
+#include "core/math/math.h"
+#include "core/scene/scene.h"
+
+namespace sst {
+
+struct Ray {
+  vec3 origin;
+  vec3 direction;  // need not be unit length; t is in units of |direction|
+  float tmin = 0.0f;
+  float tmax = kInf;
+};
+
+struct Hit {
+  float t = kInf;
+  uint32_t triangle = UINT32_MAX;
+  vec2 barycentric{0.0f};  // Embree's (u, v): p = (1-u-v) p0 + u p1 + v p2
+  bool valid() const { return triangle != UINT32_MAX; }
+};
+
+class EmbreeAccel {
+ public:
+  explicit EmbreeAccel(const Scene& scene);
+  ~EmbreeAccel();
+  EmbreeAccel(const EmbreeAccel&) = delete;
+  EmbreeAccel& operator=(const EmbreeAccel&) = delete;
+
+  Hit intersect(const Ray& ray) const;
+  bool occluded(const Ray& ray) const;
+
+  // Offset along the geometric normal for spawning rays from a surface point p: a fraction of
+  // the scene diagonal plus a few float ulps of p's magnitude (for scenes far from the origin).
+  float ray_epsilon(vec3 p) const {
+    return epsilon_ + 1e-6f * max_component(glm::abs(p));
+  }
+  vec3 offset_point(vec3 p, vec3 ng_toward) const { return p + ng_toward * ray_epsilon(p); }
+
+  // A shadow ray between surface point p (geometric normal ng_p, on the side of y) and y. Both
+  // ends are lifted off their surfaces along their normals (ng_y = 0 for a point light, which
+  // has no surface), and the ray runs between the lifted points: offsetting only the origin and
+  // shortening tmax by a constant fails at grazing angles, where the lifted ray meets the
+  // light's own plane up to eps / cos(theta) early and reports the light as its own occluder.
+  Ray shadow_ray(vec3 p, vec3 ng_p, vec3 y, vec3 ng_y) const {
+    Ray ray;
+    ray.origin = offset_point(p, ng_p);
+    vec3 target = glm::dot(ng_y, p - y) < 0.0f ? offset_point(y, -ng_y) : offset_point(y, ng_y);
+    ray.direction = target - ray.origin;
+    ray.tmin = 0.0f;
+    ray.tmax = 1.0f - 1e-4f;
+    return ray;
+  }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene scene_ = nullptr;
+  float epsilon_ = 0.0f;
+};
+
+}  // namespace sst

@@ -1,0 +1,351 @@
+#include "core/image/image.h"
+
+#include <OpenImageIO/imageio.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <set>
+#include <system_error>
+
+#include "core/util/error.h"
+
+namespace sst {
+namespace fs = std::filesystem;
+
+namespace {
+
+enum class FileFormat { exr, hdr, png };
+
+// OIIO error text can span lines; our errors are one line.
+std::string one_line(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message.empty() ? "unknown error" : message;
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+FileFormat format_for(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".exr") return FileFormat::exr;
+  if (ext == ".hdr") return FileFormat::hdr;
+  if (ext == ".png") return FileFormat::png;
+  throw Error("unsupported image extension '" + fs::path(path).extension().string() + "' in " + path +
+              " (use .exr, .png or .hdr)");
+}
+
+float finite_or_zero(float v) { return std::isfinite(v) ? v : 0.0f; }
+
+// Same folder (so rename is atomic) and same extension (so OIIO picks the same writer).
+fs::path temp_path_for(const fs::path& path) {
+  static std::atomic<unsigned> counter{0};
+  // Appends rather than chains operator+: GCC 12 warns falsely (-Wrestrict) on the chain.
+  std::string name = ".";
+  name += path.filename().string();
+  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+  name += path.extension().string();
+  return path.parent_path() / name;
+}
+
+void check_writable(const std::string& path, const Image& rgb, const std::vector<Layer>& layers) {
+  if (rgb.width <= 0 || rgb.height <= 0 || rgb.channels <= 0 ||
+      rgb.data.size() != size_t(rgb.width) * rgb.height * rgb.channels)
+    throw Error("cannot write image " + path + ": empty or inconsistent image (" + std::to_string(rgb.width) +
+                "x" + std::to_string(rgb.height) + "x" + std::to_string(rgb.channels) + ")");
+  std::set<std::string> names;
+  for (const Layer& layer : layers) {
+    const Image& im = layer.image;
+    if (layer.name.empty() || layer.name.find('.') != std::string::npos || !names.insert(layer.name).second)
+      throw Error("cannot write image " + path + ": bad or duplicate layer name '" + layer.name + "'");
+    if (im.width != rgb.width || im.height != rgb.height || (im.channels != 1 && im.channels != 3) ||
+        im.data.size() != size_t(im.width) * im.height * im.channels)
+      throw Error("cannot write image " + path + ": layer '" + layer.name + "' is " +
+                  std::to_string(im.width) + "x" + std::to_string(im.height) + "x" +
+                  std::to_string(im.channels) + ", expected " + std::to_string(rgb.width) + "x" +
+                  std::to_string(rgb.height) + " with 1 or 3 channels");
+  }
+}
+
+struct Pixels {
+  OIIO::ImageSpec spec;
+  std::vector<float> floats;
+  std::vector<uint8_t> bytes;
+  const void* data() const { return bytes.empty() ? static_cast<const void*>(floats.data()) : bytes.data(); }
+};
+
+// Channel names: R, G, B, then <layer>.R/G/B or <layer>.Y per layer.
+std::vector<std::string> exr_channel_names(const std::vector<Layer>& layers) {
+  std::vector<std::string> names{"R", "G", "B"};
+  for (const Layer& layer : layers) {
+    if (layer.image.channels == 1) {
+      names.push_back(layer.name + ".Y");
+    } else {
+      for (const char* c : {".R", ".G", ".B"}) names.push_back(layer.name + c);
+    }
+  }
+  return names;
+}
+
+Pixels pack_float(const Image& rgb, const std::vector<Layer>& layers) {
+  Pixels px;
+  const std::vector<std::string> names = exr_channel_names(layers);
+  const int nch = int(names.size());
+  px.spec = OIIO::ImageSpec(rgb.width, rgb.height, nch, OIIO::TypeDesc::FLOAT);
+  px.spec.channelnames = names;
+  px.floats.resize(rgb.pixel_count() * nch);
+  for (int y = 0; y < rgb.height; ++y) {
+    for (int x = 0; x < rgb.width; ++x) {
+      float* out = &px.floats[(size_t(y) * rgb.width + x) * nch];
+      const vec3 c = rgb.rgb(x, y);
+      *out++ = finite_or_zero(c.x);
+      *out++ = finite_or_zero(c.y);
+      *out++ = finite_or_zero(c.z);
+      for (const Layer& layer : layers)
+        for (int k = 0; k < layer.image.channels; ++k) *out++ = finite_or_zero(layer.image.at(x, y, k));
+    }
+  }
+  return px;
+}
+
+Pixels pack_display(const Image& rgb, float exposure) {
+  Pixels px;
+  px.spec = OIIO::ImageSpec(rgb.width, rgb.height, 3, OIIO::TypeDesc::UINT8);
+  px.spec.attribute("oiio:ColorSpace", "sRGB");
+  px.bytes.resize(rgb.pixel_count() * 3);
+  const float scale = std::exp2(exposure);
+  for (int y = 0; y < rgb.height; ++y) {
+    for (int x = 0; x < rgb.width; ++x) {
+      const vec3 c = rgb.rgb(x, y);
+      uint8_t* out = &px.bytes[(size_t(y) * rgb.width + x) * 3];
+      for (int k = 0; k < 3; ++k) {
+        const float v = finite_or_zero(c[k] * scale);
+        out[k] = uint8_t(std::lround(srgb_encode(std::clamp(v, 0.0f, 1.0f)) * 255.0f));
+      }
+    }
+  }
+  return px;
+}
+
+void write_with_oiio(const fs::path& temp, const std::string& path, const Pixels& px) {
+  auto fail = [&](const std::string& why) {
+    std::error_code ec;
+    fs::remove(temp, ec);
+    throw Error("cannot write image " + path + ": " + one_line(why));
+  };
+  auto out = OIIO::ImageOutput::create(temp.string());
+  if (!out) fail(OIIO::geterror());
+  if (!out->open(temp.string(), px.spec)) fail(out->geterror());
+  if (!out->write_image(px.spec.format, px.data())) fail(out->geterror());
+  if (!out->close()) fail(out->geterror());
+  out.reset();
+  std::error_code ec;
+  fs::rename(temp, path, ec);
+  if (ec) fail(ec.message());
+}
+
+std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error("cannot read image " + path + ": no such file");
+  if (fs::is_directory(path, ec)) throw Error("cannot read image " + path + ": is a directory");
+  OIIO::ImageSpec config;
+  // Keep PNG colour values as stored; OIIO would otherwise premultiply by alpha.
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(path, &config);
+  if (!in) throw Error("cannot read image " + path + ": " + one_line(OIIO::geterror()));
+  return in;
+}
+
+// Integer-coded files are display-encoded in practice (PNG, JPEG, 8/16-bit TIFF).
+bool is_display_encoded(const OIIO::ImageInput& in) {
+  const std::string format = in.format_name();
+  const auto base = in.spec().format.basetype;
+  return format == "png" || format == "jpeg" || base == OIIO::TypeDesc::UINT8 ||
+         base == OIIO::TypeDesc::UINT16;
+}
+
+// All channels of subimage 0 as floats; integer levels are divided by their maximum exactly.
+std::vector<float> read_all_channels(OIIO::ImageInput& in, const std::string& path) {
+  const OIIO::ImageSpec& spec = in.spec();
+  const size_t count = size_t(spec.width) * spec.height * spec.nchannels;
+  std::vector<float> values(count);
+  auto fail = [&] { throw Error("cannot read image " + path + ": " + one_line(in.geterror())); };
+  if (spec.format.basetype == OIIO::TypeDesc::UINT8) {
+    std::vector<uint8_t> raw(count);
+    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data())) fail();
+    for (size_t i = 0; i < count; ++i) values[i] = float(raw[i]) / 255.0f;
+  } else if (spec.format.basetype == OIIO::TypeDesc::UINT16) {
+    std::vector<uint16_t> raw(count);
+    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT16, raw.data())) fail();
+    for (size_t i = 0; i < count; ++i) values[i] = float(raw[i]) / 65535.0f;
+  } else if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data())) {
+    fail();
+  }
+  return values;
+}
+
+int channel_index(const OIIO::ImageSpec& spec, const std::string& name) {
+  for (int i = 0; i < spec.nchannels; ++i)
+    if (spec.channelnames[i] == name) return i;
+  return -1;
+}
+
+Image gather(const OIIO::ImageSpec& spec, const std::vector<float>& values,
+             const std::vector<int>& channels) {
+  Image out(spec.width, spec.height, int(channels.size()));
+  for (size_t p = 0; p < out.pixel_count(); ++p)
+    for (size_t k = 0; k < channels.size(); ++k)
+      out.data[p * channels.size() + k] = values[p * spec.nchannels + channels[k]];
+  return out;
+}
+
+// R,G,B by name (multi-layer EXRs); else Y or a single channel replicated; else the first three.
+std::vector<int> rgb_channels(const OIIO::ImageSpec& spec) {
+  const int r = channel_index(spec, "R"), g = channel_index(spec, "G"), b = channel_index(spec, "B");
+  if (r >= 0 && g >= 0 && b >= 0) return {r, g, b};
+  const int y = channel_index(spec, "Y");
+  if (y >= 0) return {y, y, y};
+  if (spec.nchannels < 3) return {0, 0, 0};
+  return {0, 1, 2};
+}
+
+std::vector<std::string> layer_names(const OIIO::ImageSpec& spec) {
+  std::set<std::string> names;
+  for (const std::string& channel : spec.channelnames) {
+    const auto dot = channel.rfind('.');
+    if (dot != std::string::npos && dot > 0) names.insert(channel.substr(0, dot));
+  }
+  return {names.begin(), names.end()};
+}
+
+// v = f(v) for every value, in parallel: each value on its own, so threads change no bit.
+template <typename F>
+void for_each_value(Image& image, F f) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, image.data.size(), 1 << 16),
+                    [&](const tbb::blocked_range<size_t>& r) {
+                      for (size_t i = r.begin(); i < r.end(); ++i) image.data[i] = f(image.data[i]);
+                    });
+}
+
+}  // namespace
+
+vec3 Image::rgb(int x, int y) const {
+  const float* p = &data[(size_t(y) * width + x) * channels];
+  return channels >= 3 ? vec3(p[0], p[1], p[2]) : vec3(p[0]);
+}
+
+// A 1- or 2-channel image keeps the luminance: the scalar the rest of the tool would use.
+void Image::set_rgb(int x, int y, vec3 v) {
+  float* p = &data[(size_t(y) * width + x) * channels];
+  if (channels >= 3) {
+    p[0] = v.x;
+    p[1] = v.y;
+    p[2] = v.z;
+  } else {
+    p[0] = luminance(v);
+  }
+}
+
+float srgb_encode(float linear) {
+  if (linear <= 0.0031308f) return 12.92f * linear;
+  // The affine step in double: in float, 1.055f - 0.055f is 0.99999994 and white would not be 1.
+  return float(1.055 * double(std::pow(linear, 1.0f / 2.4f)) - 0.055);
+}
+
+float srgb_decode(float encoded) {
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow(float((double(encoded) + 0.055) / 1.055), 2.4f);
+}
+
+// Non-finite values display as 0 (black), the same value write_image stores for them.
+Image to_display(const Image& linear, float exposure) {
+  Image out = linear;
+  const float scale = std::exp2(exposure);
+  for_each_value(out,
+                 [scale](float v) { return srgb_encode(std::clamp(finite_or_zero(v * scale), 0.0f, 1.0f)); });
+  return out;
+}
+
+Image from_display(const Image& display) {
+  Image out = display;
+  for_each_value(out, [](float v) { return srgb_decode(finite_or_zero(v)); });
+  return out;
+}
+
+void write_image(const std::string& path, const Image& rgb, const std::vector<Layer>& layers,
+                 float exposure) {
+  const FileFormat format = format_for(path);
+  check_writable(path, rgb, layers);
+  const fs::path target(path);
+  if (target.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(target.parent_path(), ec);
+    if (ec) throw Error("cannot write image " + path + ": cannot create its folder (" + ec.message() + ")");
+  }
+  const fs::path temp = temp_path_for(target);
+  switch (format) {
+    case FileFormat::exr: {
+      Pixels px = pack_float(rgb, layers);
+      px.spec.attribute("compression", "zip");
+      write_with_oiio(temp, path, px);
+      break;
+    }
+    case FileFormat::hdr:
+      write_with_oiio(temp, path, pack_float(rgb, {}));
+      break;
+    case FileFormat::png:
+      write_with_oiio(temp, path, pack_display(rgb, exposure));
+      break;
+  }
+}
+
+Image read_image_stored(const std::string& path, bool* was_display) {
+  auto in = open_input(path);
+  const std::vector<float> values = read_all_channels(*in, path);
+  if (was_display) *was_display = is_display_encoded(*in);
+  return gather(in->spec(), values, rgb_channels(in->spec()));
+}
+
+Image read_image(const std::string& path, bool* was_display) {
+  bool display = false;
+  Image image = read_image_stored(path, &display);
+  if (was_display) *was_display = display;
+  if (display)
+    for (float& v : image.data) v = srgb_decode(v);
+  return image;
+}
+
+Image read_layer(const std::string& path, const std::string& layer) {
+  auto in = open_input(path);
+  const OIIO::ImageSpec& spec = in->spec();
+  std::vector<int> channels;
+  const int r = channel_index(spec, layer + ".R"), g = channel_index(spec, layer + ".G"),
+            b = channel_index(spec, layer + ".B"), y = channel_index(spec, layer + ".Y");
+  if (r >= 0 && g >= 0 && b >= 0) {
+    channels = {r, g, b};
+  } else if (y >= 0) {
+    channels = {y};
+  } else {
+    std::string available;
+    for (const std::string& name : layer_names(spec)) available += (available.empty() ? "" : ", ") + name;
+    throw Error("image " + path + " has no layer '" + layer + "' (" +
+                (available.empty() ? std::string("it has no layers") : "layers: " + available) + ")");
+  }
+  return gather(spec, read_all_channels(*in, path), channels);
+}
+
+std::vector<std::string> list_layers(const std::string& path) {
+  return layer_names(open_input(path)->spec());
+}
+
+}  // namespace sst

@@ -1,0 +1,124 @@
+#include "core/lights/light_sampler.h"
+
+#include "core/render/surface.h"
+#include "core/sampling/sampling.h"
+
+namespace sst {
+namespace {
+// Luminance of a texture's mean, so a textured emitter's power estimate reflects its pattern.
+float mean_luminance(const Texture& t) {
+  if (t.texels.empty()) return 1.0f;
+  double sum = 0.0;
+  for (const vec4& c : t.texels) sum += luminance(vec3(c));
+  return float(sum / double(t.texels.size()));
+}
+
+double punctual_power(const PunctualLight& light, const Bounds3& bounds) {
+  float i = luminance(light.intensity);
+  switch (light.type) {
+    case LightType::Point: return 4.0 * kPi * i;
+    case LightType::Spot: {
+      // Cone of the average of the inner and outer angles: a close, cheap estimate.
+      float cos_mid = 0.5f * (light.cos_inner + light.cos_outer);
+      return 2.0 * kPi * (1.0 - cos_mid) * i;
+    }
+    case LightType::Directional: {
+      // Irradiance over the disc the scene's bounding sphere casts.
+      float r = 0.5f * bounds.diagonal();
+      return kPi * r * r * i;
+    }
+  }
+  return 0.0;
+}
+}  // namespace
+
+float spot_attenuation(const PunctualLight& light, vec3 light_to_point_unit) {
+  float cd = glm::dot(light.direction, light_to_point_unit);
+  float scale = 1.0f / std::max(0.001f, light.cos_inner - light.cos_outer);
+  float a = std::clamp((cd - light.cos_outer) * scale, 0.0f, 1.0f);
+  return a * a;
+}
+
+LightSampler::LightSampler(const Scene& scene) : scene_(&scene) {
+  std::vector<double> weights;
+  for (const PunctualLight& light : scene.lights) weights.push_back(punctual_power(light, scene.bounds));
+  std::vector<float> material_scale(scene.materials.size(), 0.0f);
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const Material& mat = scene.materials[m];
+    float tex = mat.emissive_texture >= 0 && size_t(mat.emissive_texture) < scene.textures.size()
+                    ? mean_luminance(scene.textures[mat.emissive_texture])
+                    : 1.0f;
+    material_scale[m] = luminance(mat.emission) * tex * kPi * (mat.double_sided ? 2.0f : 1.0f);
+  }
+  light_of_triangle_.assign(scene.triangles.size(), UINT32_MAX);
+  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
+    float scale = material_scale[scene.triangle_material[t]];
+    if (!(scale > 0.0f)) continue;
+    float area = triangle_area(scene, t);
+    if (!(area > 0.0f)) continue;
+    light_of_triangle_[t] = uint32_t(weights.size());
+    weights.push_back(double(area) * scale);
+    emissive_triangles_.push_back(t);
+    triangle_area_.push_back(area);
+  }
+  distribution_ = DiscreteDistribution(weights);
+}
+
+bool LightSampler::sample(vec3 p, float u_pick, float u1, float u2, LightSample& out) const {
+  if (empty()) return false;
+  uint32_t index = distribution_.sample(u_pick);
+  float pick = distribution_.pmf(index);
+  if (index < scene_->lights.size()) {
+    const PunctualLight& light = scene_->lights[index];
+    out.delta = true;
+    out.pdf = pick;
+    if (light.type == LightType::Directional) {
+      out.wi = -light.direction;
+      out.distance = kInf;
+      out.li = light.intensity;
+      return true;
+    }
+    out.point = light.position;
+    out.normal = vec3(0.0f);
+    vec3 d = light.position - p;
+    float d2 = glm::dot(d, d);
+    if (!(d2 > 0.0f)) return false;
+    out.distance = std::sqrt(d2);
+    out.wi = d / out.distance;
+    out.li = light.intensity / d2;
+    if (light.type == LightType::Spot) out.li *= spot_attenuation(light, -out.wi);
+    return true;
+  }
+  size_t k = index - scene_->lights.size();
+  uint32_t tri = emissive_triangles_[k];
+  const uvec3& t = scene_->triangles[tri];
+  vec2 b = sample_uniform_triangle(u1, u2);
+  vec3 y = (1.0f - b.x - b.y) * scene_->positions[t.x] + b.x * scene_->positions[t.y] + b.y * scene_->positions[t.z];
+  vec3 d = y - p;
+  float d2 = glm::dot(d, d);
+  if (!(d2 > 0.0f)) return false;
+  out.distance = std::sqrt(d2);
+  out.wi = d / out.distance;
+  vec3 ng = triangle_geometric_normal(*scene_, tri);
+  float cos_light = glm::dot(ng, -out.wi);
+  if (cos_light == 0.0f) return false;
+  out.li = triangle_emission(*scene_, tri, b, cos_light > 0.0f);
+  out.point = y;
+  out.normal = ng;
+  out.pdf = pick / triangle_area_[k] * d2 / std::abs(cos_light);
+  out.delta = false;
+  return std::isfinite(out.pdf) && out.pdf > 0.0f;
+}
+
+float LightSampler::pdf_emissive_hit(vec3 p, uint32_t tri, vec3 y, vec3 ng_light) const {
+  if (tri >= light_of_triangle_.size() || light_of_triangle_[tri] == UINT32_MAX) return 0.0f;
+  uint32_t index = light_of_triangle_[tri];
+  size_t k = index - scene_->lights.size();
+  vec3 d = y - p;
+  float d2 = glm::dot(d, d);
+  float cos_light = std::abs(glm::dot(ng_light, d)) / std::sqrt(d2);
+  if (!(cos_light > 0.0f)) return 0.0f;
+  return distribution_.pmf(index) / triangle_area_[k] * d2 / cos_light;
+}
+
+}  // namespace sst

@@ -1,0 +1,51 @@
+// Direct-light sampling over every light of a scene: punctual lights (point, spot, directional)
+// and emissive triangles, one light picked in proportion to its power (METHODS.md §0), then a
+// point on it (uniform by area on a triangle). Also answers the pdf of hitting an emissive
+// triangle by BSDF sampling, for multiple importance sampling.
+#pragma once
+#include <vector>
+
+#include "core/math/math.h"
+#include "core/sampling/discrete_distribution.h"
+#include "core/scene/scene.h"
+
+namespace sst {
+
+struct LightSample {
+  vec3 wi{0.0f};         // unit, from the shading point toward the light
+  float distance = 0.0f;  // to the light point; kInf for directional lights
+  vec3 li{0.0f};         // radiance (area) / intensity / d^2 (point, spot) / irradiance (directional)
+  float pdf = 0.0f;      // solid-angle pdf incl. the light's pick probability; for delta lights the pick probability
+  bool delta = false;    // point, spot, directional: cannot be hit by BSDF sampling
+  vec3 point{0.0f};      // the sampled point (point/spot position; unused for directional)
+  vec3 normal{0.0f};     // geometric normal at the point (0 for punctual lights)
+};
+
+// glTF spot attenuation: smooth step between the outer and inner cone cosines, squared.
+float spot_attenuation(const PunctualLight& light, vec3 light_to_point_unit);
+
+class LightSampler {
+ public:
+  LightSampler() = default;
+  explicit LightSampler(const Scene& scene);
+
+  bool empty() const { return distribution_.empty(); }
+  size_t light_count() const { return distribution_.size(); }
+  size_t emissive_triangle_count() const { return emissive_triangles_.size(); }
+
+  // Samples a light for shading point p with 3 random numbers. Returns false when no light can
+  // contribute (no lights, or the sampled point is degenerate).
+  bool sample(vec3 p, float u_pick, float u1, float u2, LightSample& out) const;
+  // Solid-angle pdf that `sample` would pick the point y on emissive triangle `tri` from p
+  // (0 for a triangle that is not a light).
+  float pdf_emissive_hit(vec3 p, uint32_t tri, vec3 y, vec3 ng_light) const;
+
+ private:
+  const Scene* scene_ = nullptr;
+  DiscreteDistribution distribution_;     // over punctual lights first, then emissive triangles
+  std::vector<uint32_t> emissive_triangles_;
+  std::vector<float> triangle_area_;       // of each emissive triangle, same order
+  std::vector<uint32_t> light_of_triangle_;  // triangle -> index in the distribution, or UINT32_MAX
+};
+
+}  // namespace sst

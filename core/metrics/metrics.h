@@ -1,0 +1,42 @@
+// Image metrics of a test image against a reference (METHODS.md §6).
+#pragma once
+#include <cstddef>
+#include <nlohmann/json_fwd.hpp>
+
+#include "core/image/image.h"
+#include "core/math/math.h"
+#include "core/metrics/error_map.h"
+#include "core/metrics/ssim.h"
+
+namespace sst {
+
+// Error metrics are over all pixels and channels of the linear (HDR) values; ssim is over the
+// display images. Non-finite values are never skipped: skipping would reward a method for
+// producing NaN where it is hard. They are counted and take part as 0 (black).
+struct ImageMetrics {
+  int width = 0;
+  int height = 0;
+  double rmse = 0.0;     // sqrt(mean((t-r)^2))
+  double rel_mse = 0.0;  // mean((t-r)^2 / (r^2 + 0.01)): the 0.01 keeps dark pixels from dominating
+  // 10 log10(1 / mse) with peak 1: linear HDR has no natural peak, and 1 is display white at
+  // exposure 0. +inf when the images are equal (null in JSON).
+  double psnr = 0.0;
+  // Mean SSIM of the display images, averaged over channels, exactly as scikit-image computes it
+  // (see ssim.h). NaN (null in JSON) when the image is smaller than the 11x11 window.
+  double ssim = 0.0;
+  double mae = 0.0;                // mean |t-r|
+  dvec3 mean_test{0.0};            // mean linear RGB of the test image
+  dvec3 mean_reference{0.0};       // mean linear RGB of the reference
+  size_t nonfinite_test = 0;       // test pixels with a NaN/Inf channel (a defect of the method)
+  size_t nonfinite_reference = 0;  // same for the reference (a defect of the reference)
+};
+
+// inputs_are_display: both images hold display values (as stored in a PNG); their linear values
+// are srgb_decode of them and SSIM uses them as they are. Otherwise both are linear and SSIM uses
+// to_display(x) at exposure 0. Throws sst::Error naming both sizes when they differ.
+ImageMetrics compare_images(const Image& test, const Image& reference, bool inputs_are_display = false);
+
+// Every field, snake_case; mean_* as [r, g, b]; non-finite numbers as null.
+nlohmann::json to_json(const ImageMetrics& metrics);
+
+}  // namespace sst

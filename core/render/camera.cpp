@@ -1,0 +1,52 @@
+#include "core/render/camera.h"
+
+#include <string>
+
+#include "core/util/error.h"
+
+namespace sst {
+
+PinholeCamera::PinholeCamera(const Camera& camera, int width, int height)
+    : eye_(camera.eye), width_(width), height_(height) {
+  forward_ = glm::normalize(camera.forward);
+  right_ = glm::normalize(glm::cross(forward_, camera.up));
+  up_ = glm::cross(right_, forward_);
+  tan_half_y_ = std::tan(0.5f * camera.yfov);
+  // The image's own aspect ratio wins over the file's: yfov is kept, as glTF intends.
+  aspect_ = float(width) / float(height);
+}
+
+Ray PinholeCamera::generate(float px, float py) const {
+  float sx = (2.0f * px / float(width_) - 1.0f) * tan_half_y_ * aspect_;
+  float sy = (1.0f - 2.0f * py / float(height_)) * tan_half_y_;
+  Ray ray;
+  ray.origin = eye_;
+  ray.direction = glm::normalize(forward_ + sx * right_ + sy * up_);
+  return ray;
+}
+
+const Camera& select_camera(const Scene& scene, const std::string& name_or_index) {
+  if (scene.cameras.empty()) throw Error(scene.source + ": the scene has no camera");
+  if (name_or_index.empty()) return scene.cameras.front();
+  for (const Camera& c : scene.cameras)
+    if (c.name == name_or_index) return c;
+  bool numeric = !name_or_index.empty() && name_or_index.find_first_not_of("0123456789") == std::string::npos;
+  if (numeric) {
+    size_t index = std::stoul(name_or_index);
+    if (index < scene.cameras.size()) return scene.cameras[index];
+  }
+  std::string names;
+  for (size_t i = 0; i < scene.cameras.size(); ++i)
+    names += (i ? ", " : "") + std::to_string(i) + " '" + scene.cameras[i].name + "'";
+  throw Error("no camera '" + name_or_index + "' in " + scene.source + " (cameras: " + names + ")");
+}
+
+void resolve_resolution(const Camera& camera, int& width, int& height) {
+  float aspect = camera.aspect > 0.0f ? camera.aspect : 1.0f;
+  if (width < 0 || height < 0) throw Error("image size must be positive");
+  if (width == 0 && height == 0) width = 640;
+  if (width == 0) width = std::max(1, int(std::lround(float(height) * aspect)));
+  if (height == 0) height = std::max(1, int(std::lround(float(width) / aspect)));
+}
+
+}  // namespace sst

@@ -1,0 +1,26 @@
+// Pinhole camera generating primary rays; pixel (0,0) is the top-left corner of the image.
+#pragma once
+#include "core/accel/embree_accel.h"
+#include "core/scene/scene.h"
+
+namespace sst {
+
+class PinholeCamera {
+ public:
+  PinholeCamera(const Camera& camera, int width, int height);
+  // (px, py) in pixels, continuous: pixel x covers [x, x+1). Unit-length direction.
+  Ray generate(float px, float py) const;
+
+ private:
+  vec3 eye_, right_, up_, forward_;
+  float tan_half_y_ = 0.0f, aspect_ = 1.0f;
+  int width_ = 1, height_ = 1;
+};
+
+// Picks a camera by name or index ("" = the first). Throws sst::Error listing what exists.
+const Camera& select_camera(const Scene& scene, const std::string& name_or_index);
+// Fills whichever of width/height is 0 from the other and the camera's aspect ratio (square
+// when the camera has none); both 0 gives a width of 640.
+void resolve_resolution(const Camera& camera, int& width, int& height);
+
+}  // namespace sst

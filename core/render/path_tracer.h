@@ -1,0 +1,49 @@
+// `pt`: unidirectional path tracer with next-event estimation and MIS (power heuristic) between
+// light sampling and BRDF sampling. `max_bounces` counts indirect bounces, as Cycles and the SST
+// paper's PT_n rows do: 0 = direct light only. It is the ground truth of every other method.
+//
+// | parameter        | default | meaning                                                        |
+// |------------------|---------|----------------------------------------------------------------|
+// | max_bounces      | 8       | indirect bounces (PT1/PT2/PT3 of the SST paper: 1, 2, 3)        |
+// | rr_min_bounces   | 3       | bounces before Russian roulette starts (never, if >= max_bounces) |
+#pragma once
+#include "core/render/method.h"
+#include "core/rng/hash_rng.h"
+#include "core/util/params.h"
+
+namespace sst {
+
+struct PathTracerParams {
+  int max_bounces = 8;
+  int rr_min_bounces = 3;
+
+  template <class V>
+  void visit(V&& v) {
+    v("max_bounces", max_bounces, "maximum number of indirect bounces (0: direct light only)");
+    v("rr_min_bounces", rr_min_bounces, "indirect bounces before Russian roulette may end a path");
+  }
+};
+
+// One camera path's contribution, split the way the EXR layers are.
+struct PathSample {
+  vec3 direct{0.0f};
+  vec3 indirect{0.0f};
+  vec3 albedo{0.0f};
+  vec3 normal{0.0f};
+  float depth = 0.0f;
+};
+
+PathSample trace_path(const RenderContext& context, const PathTracerParams& params, Ray ray, HashRng& rng,
+                      RayCounters& counters);
+
+class PathTracer final : public Method {
+ public:
+  explicit PathTracer(const PathTracerParams& params);
+  FrameOutput render(const RenderContext& context, StageTimer& timer) override;
+  nlohmann::json params() const override;
+
+ private:
+  PathTracerParams params_;
+};
+
+}  // namespace sst

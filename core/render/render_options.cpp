@@ -1,0 +1,18 @@
+#include "core/render/render_options.h"
+
+#include <cmath>
+
+#include "core/util/error.h"
+
+namespace sst {
+
+void validate(const RenderOptions& o) {
+  if (o.width < 0 || o.height < 0) throw Error("width and height must be >= 0");
+  if (int64_t(o.width) * o.height > (int64_t(1) << 28)) throw Error("image of " + std::to_string(o.width) + "x" + std::to_string(o.height) + " pixels is too large");
+  if (o.spp < 1) throw Error("spp must be >= 1 (got " + std::to_string(o.spp) + ")");
+  if (o.threads < 0) throw Error("threads must be >= 0");
+  if (!std::isfinite(o.exposure)) throw Error("exposure must be finite");
+  if (o.backend != "cpu") throw Error("backend '" + o.backend + "' is not available (this build has: cpu)");
+}
+
+}  // namespace sst

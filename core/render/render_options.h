@@ -1,0 +1,39 @@
+// Options every render has, whatever the method. Method-specific parameters live in each
+// method's own struct (see method_registry.h); both are serialised by their visit() lists.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace sst {
+
+struct RenderOptions {
+  std::string method = "pt";
+  std::string backend = "cpu";
+  int width = 0;   // 0: from height and the camera's aspect ratio
+  int height = 0;  // 0: from width and the camera's aspect ratio
+  int spp = 16;
+  uint32_t seed = 0;
+  bool diffuse_only = false;
+  std::string camera;  // name or index; "" = the first
+  int threads = 0;     // 0 = all hardware threads
+  float exposure = 0.0f;  // stops, applied when writing PNG only
+
+  template <class V>
+  void visit(V&& v) {
+    v("method", method, "rendering method (see --list-methods)");
+    v("backend", backend, "cpu (Embree) or vulkan");
+    v("width", width, "image width in pixels (0: from height and the camera's aspect ratio)");
+    v("height", height, "image height in pixels (0: from width and the camera's aspect ratio)");
+    v("spp", spp, "samples per pixel (pt: camera paths; many-light methods: indirect samples)");
+    v("seed", seed, "random seed; the same seed gives the same image bits");
+    v("diffuse_only", diffuse_only, "replace every material by Lambert baseColor/pi (+ its emission)");
+    v("camera", camera, "camera name or index (default: the first)");
+    v("threads", threads, "CPU threads (0: all)");
+    v("exposure", exposure, "exposure in stops for PNG output");
+  }
+};
+
+// Throws sst::Error for impossible values (naming the option and the value).
+void validate(const RenderOptions& options);
+
+}  // namespace sst

@@ -1,0 +1,60 @@
+#include "core/render/render_record.h"
+
+#include <algorithm>
+#include <thread>
+
+#include <embree3/rtcore_config.h>
+#include <tbb/info.h>
+
+#include "core/scene/scene_summary.h"
+#include "core/util/machine_info.h"
+#include "core/util/params.h"
+
+namespace sst {
+
+nlohmann::json stage_statistics(const std::vector<StageTimer>& timers) {
+  nlohmann::json j = nlohmann::json::object();
+  if (timers.empty()) return j;
+  for (const auto& [stage, ms0] : timers.front().stages()) {
+    std::vector<double> v;
+    for (const StageTimer& t : timers) v.push_back(t.ms(stage));
+    std::sort(v.begin(), v.end());
+    size_t n = v.size();
+    double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+    j[stage] = {{"median", median}, {"min", v.front()}, {"max", v.back()}};
+  }
+  return j;
+}
+
+nlohmann::json make_render_record(const std::string& tool, const Scene& scene, const std::vector<RenderResult>& runs,
+                                  const StageTimer& load, const StageTimer& write) {
+  const RenderResult& last = runs.back();
+  nlohmann::json r;
+  r["schema_version"] = kRecordSchemaVersion;
+  r["tool"] = tool;
+  r["revision"] = tool_revision();
+  r["timestamp"] = utc_timestamp();
+  r["machine"] = machine_info();
+  int threads = last.options.threads > 0 ? last.options.threads : tbb::info::default_concurrency();
+  r["device"] = {{"backend", last.options.backend},
+                 {"name", "CPU: Embree " RTC_VERSION_STRING ", oneTBB, " + std::to_string(threads) + " threads"}};
+  r["scene"] = scene_summary(scene, last.options.diffuse_only);
+  r["options"] = params_to_json(last.options);
+  r["method_params"] = last.method_params;
+
+  std::vector<StageTimer> timers;
+  for (const RenderResult& run : runs) {
+    StageTimer t = load;
+    for (const auto& [stage, ms] : run.timer.stages()) t.add(stage, ms);
+    for (const auto& [stage, ms] : write.stages()) t.add(stage, ms);
+    timers.push_back(t);
+  }
+  r["repeat"] = runs.size();
+  r["timings_ms"] = stage_statistics(timers);
+  // Load and write happen once; their min = max = median.
+  r["counters"] = last.frame.counters.to_json(last.timer.ms("render"));
+  r["method_counters"] = last.frame.method_counters;
+  return r;
+}
+
+}  // namespace sst

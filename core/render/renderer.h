@@ -1,0 +1,23 @@
+// Renders one frame of a loaded scene: acceleration structure, lights, camera, then the method.
+// Shared by sst-render, sst-eval and the tests, so all of them run exactly the same pipeline.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "core/render/frame.h"
+#include "core/render/render_options.h"
+#include "core/scene/scene.h"
+#include "core/util/stage_timer.h"
+
+namespace sst {
+
+struct RenderResult {
+  FrameOutput frame;
+  RenderOptions options;           // as resolved (width and height filled in)
+  nlohmann::json method_params;    // every parameter of the method in effect
+  StageTimer timer;                // "accel_build", "light_setup", then the method's stages
+};
+
+RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
+                          bool quiet = true);
+
+}  // namespace sst

@@ -1,0 +1,1049 @@
+#include "core/scene/gltf_loader.h"
+
+#include <tbb/parallel_for.h>
+#include <tiny_gltf.h>
+
+#include <array>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <tuple>
+#include <unordered_map>
+
+#include "core/util/error.h"
+
+namespace sst {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Extensions
+// ---------------------------------------------------------------------------------------------
+
+// Required extensions we accept. glTF obliges a loader to refuse a file that requires anything
+// else, so the table holds only what we implement or what cannot change the image.
+struct AcceptedExtension {
+  std::string_view name;
+  std::string_view why;
+};
+constexpr std::array kAcceptedRequiredExtensions = {
+    AcceptedExtension{"KHR_lights_punctual", "implemented: point, spot and directional lights"},
+    AcceptedExtension{"KHR_materials_emissive_strength", "implemented: scales emissiveFactor"},
+    AcceptedExtension{"KHR_mesh_quantization", "implemented: integer POSITION/NORMAL/TEXCOORD_0"},
+    AcceptedExtension{"KHR_texture_transform", "only identity transforms (checked per texture)"},
+    AcceptedExtension{"KHR_xmp_json_ld", "metadata only"},
+};
+// Extensions that are used, not required, and that we implement: no "ignored" warning.
+constexpr std::array<std::string_view, 3> kImplementedExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+
+template <class Table>
+bool contains(const Table& table, std::string_view name) {
+  for (const auto& entry : table) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(entry)>, AcceptedExtension>) {
+      if (entry.name == name) return true;
+    } else if (entry == name) {
+      return true;
+    }
+  }
+  return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Small helpers
+// ---------------------------------------------------------------------------------------------
+
+// Each distinct message once, in order of first appearance, with a count when it repeats.
+class Warnings {
+ public:
+  void add(const std::string& message) {
+    auto [it, fresh] = count_.try_emplace(message, 0);
+    if (fresh) order_.push_back(message);
+    ++it->second;
+  }
+  void append_to(std::vector<std::string>& out) const {
+    for (const std::string& m : order_) {
+      size_t n = count_.at(m);
+      out.push_back(n > 1 ? m + " (" + std::to_string(n) + " times)" : m);
+    }
+  }
+
+ private:
+  std::vector<std::string> order_;
+  std::unordered_map<std::string, size_t> count_;
+};
+
+// tinygltf reports errors as several lines, sometimes with a nlohmann exception prefix; we
+// want one line.
+std::string first_line(const std::string& text) {
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    size_t b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos) continue;
+    size_t e = line.find_last_not_of(" \t\r");
+    return line.substr(b, e - b + 1);
+  }
+  return "unknown error";
+}
+
+// The messages tinygltf gives for buffer files, reworded to say what is wrong with which file.
+std::string tinygltf_error(const std::string& err) {
+  std::string line = first_line(err);
+  if (line.rfind("File not found : ", 0) == 0) return "buffer file not found: " + line.substr(17);
+  if (line.rfind("File size mismatch : ", 0) == 0) {
+    std::string rest = line.substr(21);  // "<path>, requestedBytes N, but got M"
+    size_t comma = rest.rfind(", requestedBytes ");
+    size_t got = rest.rfind(", but got ");
+    if (comma != std::string::npos && got != std::string::npos && got > comma)
+      return "buffer file " + rest.substr(0, comma) + " has " + rest.substr(got + 10) + " bytes, the glTF says " +
+             rest.substr(comma + 17, got - comma - 17);
+  }
+  if (line.find("parse_error") != std::string::npos || line.find("JSON string too short") != std::string::npos) {
+    size_t bracket = line.find("] ");
+    if (line.rfind("[json.exception", 0) == 0 && bracket != std::string::npos) line = line.substr(bracket + 2);
+    return "malformed JSON: " + line;
+  }
+  return line;
+}
+
+const tinygltf::Value* member(const tinygltf::Value& object, const std::string& key) {
+  if (!object.IsObject() || !object.Has(key)) return nullptr;
+  return &object.Get(key);
+}
+
+const tinygltf::Value* extension(const tinygltf::ExtensionMap& extensions, const std::string& name) {
+  auto it = extensions.find(name);
+  return it == extensions.end() ? nullptr : &it->second;
+}
+
+double number_or(const tinygltf::Value* v, double fallback) {
+  return v && v->IsNumber() ? v->GetNumberAsDouble() : fallback;
+}
+
+std::string quoted_name(const std::string& kind, size_t index, const std::string& name) {
+  return kind + " " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+}
+
+bool all_finite(const std::vector<double>& values) {
+  for (double v : values)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// Decoding is deferred (see decode_images) so that images decode in parallel and only when a
+// material uses them. Images in bufferViews are re-read later with bounds checks, because
+// tinygltf hands this callback a pointer it has not checked.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
+  return true;
+}
+
+// The exact piecewise sRGB curve (IEC 61966-2-1), not a gamma approximation.
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+const std::array<float, 256>& srgb_table_8bit() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(float(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+Wrap wrap_mode(int gl_wrap, Warnings& warnings) {
+  switch (gl_wrap) {
+    case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
+    case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::MirroredRepeat;
+    case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::Repeat;
+    default:
+      warnings.add("unknown sampler wrap mode " + std::to_string(gl_wrap) + ": REPEAT used");
+      return Wrap::Repeat;
+  }
+}
+
+bool valid_decoded(const tinygltf::Image& img) {
+  if (img.width < 1 || img.height < 1 || img.component < 1 || img.component > 4) return false;
+  if (img.bits != 8 && img.bits != 16) return false;
+  return img.image.size() >= size_t(img.width) * size_t(img.height) * size_t(img.component) * size_t(img.bits / 8);
+}
+
+// An 8- or 16-bit image with 1-4 channels -> linear float RGBA (grey expands to RGB, missing
+// alpha is 1). Colour textures are sRGB-decoded; alpha never is.
+Texture to_texture(const tinygltf::Image& img, bool srgb) {
+  Texture t;
+  t.width = img.width;
+  t.height = img.height;
+  size_t texels = size_t(img.width) * size_t(img.height);
+  int channels = img.component;
+  int bytes_per = img.bits == 16 ? 2 : 1;
+  t.texels.resize(texels);
+  const auto& table = srgb_table_8bit();
+  auto channel = [&](size_t i, int c) -> float {
+    const unsigned char* p = img.image.data() + (i * channels + c) * bytes_per;
+    if (bytes_per == 1) return srgb && c < 3 ? table[*p] : float(*p) / 255.0f;
+    uint16_t v;
+    std::memcpy(&v, p, 2);
+    float f = float(v) / 65535.0f;
+    return srgb && c < 3 ? srgb_to_linear(f) : f;
+  };
+  for (size_t i = 0; i < texels; ++i) {
+    vec4 v(0.0f, 0.0f, 0.0f, 1.0f);
+    if (channels <= 2) {
+      v.x = v.y = v.z = channel(i, 0);
+      if (channels == 2) v.w = channel(i, 1);
+    } else {
+      v.x = channel(i, 0);
+      v.y = channel(i, 1);
+      v.z = channel(i, 2);
+      if (channels == 4) v.w = channel(i, 3);
+    }
+    t.texels[i] = v;
+  }
+  return t;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The conversion
+// ---------------------------------------------------------------------------------------------
+
+struct Instance {
+  int node;
+  glm::dmat4 world;
+};
+
+// One texture per (image, colour space, sampler) actually used.
+struct TextureKey {
+  int image;
+  bool srgb;
+  int sampler;
+  auto operator<=>(const TextureKey&) const = default;
+};
+
+class GltfConverter {
+ public:
+  GltfConverter(const tinygltf::Model& model, const std::string& file, Scene& scene)
+      : m_(model), file_(file), scene_(scene) {}
+
+  void run() {
+    check_extensions();
+    note_ignored_features();
+    std::vector<Instance> instances = traverse_nodes();
+    for (const Instance& inst : instances) {
+      const tinygltf::Node& node = m_.nodes[inst.node];
+      if (node.mesh >= 0) add_mesh(inst);
+      if (node.camera >= 0) add_camera(inst);
+      if (const tinygltf::Value* ext = extension(node.extensions, "KHR_lights_punctual")) add_light(inst, *ext);
+    }
+    if (scene_.triangles.empty()) fail("scene has no triangles");
+    if (degenerate_triangles_ > 0)
+      warnings_.add("dropped " + std::to_string(degenerate_triangles_) + " zero-area triangles");
+    build_materials();
+    decode_textures();
+    scene_.finalize_bounds();
+    if (scene_.cameras.empty()) add_auto_camera();
+    if (!scene_has_lights()) warnings_.add("scene has no lights: the image will be black");
+    warnings_.append_to(scene_.warnings);
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& problem) const { throw Error(file_ + ": " + problem); }
+
+  // ---- extensions and features we do not model ----
+
+  void check_extensions() {
+    for (const std::string& name : m_.extensionsRequired) {
+      if (!contains(kAcceptedRequiredExtensions, name))
+        fail("requires unsupported extension " + name);
+      if (name == "KHR_texture_transform") texture_transform_required_ = true;
+    }
+    for (const std::string& name : m_.extensionsUsed) {
+      if (name == "KHR_mesh_quantization") quantization_ = true;
+      if (!contains(kImplementedExtensions, name) && name != "KHR_texture_transform")
+        warnings_.add("extension " + name + " is not supported: ignored");
+    }
+    if (contains(m_.extensionsRequired, std::string_view("KHR_mesh_quantization"))) quantization_ = true;
+  }
+
+  void note_ignored_features() {
+    if (!m_.animations.empty()) warnings_.add("animations ignored: the rest pose is rendered");
+    if (!m_.skins.empty()) warnings_.add("skins ignored: the rest pose is rendered");
+  }
+
+  // ---- node hierarchy ----
+
+  glm::dmat4 local_matrix(int index) const {
+    const tinygltf::Node& n = m_.nodes[index];
+    std::string what = quoted_name("node", index, n.name);
+    glm::dmat4 M(1.0);
+    if (!n.matrix.empty()) {
+      if (n.matrix.size() != 16) fail(what + " has a matrix of " + std::to_string(n.matrix.size()) + " numbers (needs 16)");
+      if (!all_finite(n.matrix)) fail(what + " has a non-finite matrix");
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) M[c][r] = n.matrix[c * 4 + r];  // column-major, as glTF
+      return M;
+    }
+    auto check = [&](const std::vector<double>& v, size_t size, const char* field) {
+      if (!v.empty() && v.size() != size) fail(what + " has a " + field + " of " + std::to_string(v.size()) + " numbers");
+      if (!all_finite(v)) fail(what + " has a non-finite " + field);
+    };
+    check(n.translation, 3, "translation");
+    check(n.rotation, 4, "rotation");
+    check(n.scale, 3, "scale");
+    glm::dmat4 T(1.0), R(1.0), S(1.0);
+    if (!n.translation.empty()) T[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
+    if (!n.rotation.empty()) R = rotation_matrix(n.rotation, what);
+    if (!n.scale.empty()) S = glm::dmat4(glm::dvec4(n.scale[0], 0, 0, 0), glm::dvec4(0, n.scale[1], 0, 0),
+                                         glm::dvec4(0, 0, n.scale[2], 0), glm::dvec4(0, 0, 0, 1));
+    return T * R * S;
+  }
+
+  // glTF stores the unit quaternion as [x, y, z, w]; it is renormalised because exporters write
+  // it with float precision.
+  glm::dmat4 rotation_matrix(const std::vector<double>& q, const std::string& what) const {
+    double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(len > 0.0)) fail(what + " has a zero rotation quaternion");
+    double x = q[0] / len, y = q[1] / len, z = q[2] / len, w = q[3] / len;
+    glm::dmat4 R(1.0);
+    R[0] = glm::dvec4(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0);
+    R[1] = glm::dvec4(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0);
+    R[2] = glm::dvec4(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0);
+    return R;
+  }
+
+  std::vector<int> root_nodes() const {
+    if (!m_.scenes.empty()) {
+      int s = m_.defaultScene;
+      if (s >= int(m_.scenes.size())) fail("default scene " + std::to_string(s) + " does not exist");
+      if (s < 0) s = 0;
+      return m_.scenes[s].nodes;
+    }
+    std::vector<char> is_child(m_.nodes.size(), 0);
+    for (const tinygltf::Node& n : m_.nodes)
+      for (int c : n.children)
+        if (c >= 0 && size_t(c) < m_.nodes.size()) is_child[c] = 1;
+    std::vector<int> roots;
+    for (size_t i = 0; i < m_.nodes.size(); ++i)
+      if (!is_child[i]) roots.push_back(int(i));
+    return roots;
+  }
+
+  // Iterative, so that a deep hierarchy cannot overflow the stack; a path longer than the node
+  // count means a cycle. Each node may have one parent (glTF), which bounds the instance count.
+  std::vector<Instance> traverse_nodes() const {
+    size_t count = m_.nodes.size();
+    std::vector<int> parents(count, 0);
+    for (size_t i = 0; i < count; ++i)
+      for (int c : m_.nodes[i].children) {
+        if (c < 0 || size_t(c) >= count) fail(quoted_name("node", i, m_.nodes[i].name) + " has missing child " + std::to_string(c));
+        if (++parents[c] > 1) fail(quoted_name("node", c, m_.nodes[c].name) + " has more than one parent");
+      }
+    std::vector<Instance> out;
+    struct Item { int node; glm::dmat4 parent; size_t depth; };
+    std::vector<Item> stack;
+    std::vector<int> roots = root_nodes();
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+      if (*it < 0 || size_t(*it) >= count) fail("scene lists missing node " + std::to_string(*it));
+      stack.push_back({*it, glm::dmat4(1.0), 0});
+    }
+    while (!stack.empty()) {
+      Item item = stack.back();
+      stack.pop_back();
+      if (item.depth > count) fail("node hierarchy has a cycle through node " + std::to_string(item.node));
+      glm::dmat4 world = item.parent * local_matrix(item.node);
+      out.push_back({item.node, world});
+      const auto& children = m_.nodes[item.node].children;
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
+    }
+    return out;
+  }
+
+  // ---- accessors ----
+
+  static int component_size(int type) {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_BYTE:
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return 1;
+      case TINYGLTF_COMPONENT_TYPE_SHORT:
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return 2;
+      case TINYGLTF_COMPONENT_TYPE_INT:
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: return 4;
+      default: return 0;
+    }
+  }
+
+  // Integers decode per the glTF rules for normalized values (signed ones clamp at -1).
+  static double load_component(const unsigned char* p, int type, bool normalized) {
+    auto get = [p](auto v) { std::memcpy(&v, p, sizeof v); return v; };
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_BYTE: { double v = get(int8_t()); return normalized ? std::max(v / 127.0, -1.0) : v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { double v = get(uint8_t()); return normalized ? v / 255.0 : v; }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: { double v = get(int16_t()); return normalized ? std::max(v / 32767.0, -1.0) : v; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { double v = get(uint16_t()); return normalized ? v / 65535.0 : v; }
+      case TINYGLTF_COMPONENT_TYPE_INT: return get(int32_t());
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return get(uint32_t());
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: return get(float());
+      default: return 0.0;
+    }
+  }
+
+  // Start of `count` elements of `element` bytes, `stride` apart, at `offset` in a bufferView;
+  // every byte is checked to lie inside the view and the view inside its buffer.
+  const unsigned char* checked_bytes(int view_index, size_t offset, size_t element, size_t stride, size_t count,
+                                     const std::string& what) const {
+    if (view_index < 0 || size_t(view_index) >= m_.bufferViews.size())
+      fail(what + " refers to missing bufferView " + std::to_string(view_index));
+    const tinygltf::BufferView& view = m_.bufferViews[view_index];
+    std::string view_name = "bufferView " + std::to_string(view_index);
+    if (view.buffer < 0 || size_t(view.buffer) >= m_.buffers.size())
+      fail(view_name + " refers to missing buffer " + std::to_string(view.buffer));
+    const tinygltf::Buffer& buffer = m_.buffers[view.buffer];
+    if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
+      fail("buffer " + std::to_string(view.buffer) + " is too short for " + view_name + " (needs " +
+           std::to_string(view.byteOffset + view.byteLength) + " bytes, has " + std::to_string(buffer.data.size()) + ")");
+    if (count > 0) {
+      size_t len = view.byteLength;
+      bool fits = offset <= len && element <= len - offset && (count - 1) <= (len - offset - element) / std::max<size_t>(stride, 1);
+      if (!fits) {
+        long double needed = (long double)offset + (long double)(count - 1) * stride + element;
+        fail(what + " reaches beyond " + view_name + " (needs " + std::to_string((unsigned long long)needed) +
+             " bytes, has " + std::to_string(len) + ")");
+      }
+    }
+    return buffer.data.data() + view.byteOffset + offset;
+  }
+
+  const tinygltf::Accessor& accessor(int index, const std::string& what) const {
+    if (index < 0 || size_t(index) >= m_.accessors.size()) fail(what + " refers to missing accessor " + std::to_string(index));
+    return m_.accessors[index];
+  }
+
+  // count x components numbers of an accessor, normalisation and sparse substitution applied.
+  template <class T>
+  std::vector<T> read_accessor(int index, int components, const std::string& what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    std::string where = what + " (accessor " + std::to_string(index) + ")";
+    int size = component_size(a.componentType);
+    if (size == 0) fail(where + " has invalid componentType " + std::to_string(a.componentType));
+    if (tinygltf::GetNumComponentsInType(a.type) != components)
+      fail(where + " has " + std::to_string(tinygltf::GetNumComponentsInType(a.type)) + " components per element (needs " +
+           std::to_string(components) + ")");
+    size_t element = size_t(size) * components;
+    // Without a bufferView nothing bounds the count (the data is implicit zeros).
+    if (a.bufferView < 0 && a.count > (size_t(1) << 26)) fail(where + " has an implausible count " + std::to_string(a.count));
+    const unsigned char* p = nullptr;
+    size_t stride = element;
+    if (a.bufferView >= 0) {
+      if (size_t(a.bufferView) < m_.bufferViews.size() && m_.bufferViews[a.bufferView].byteStride > 0)
+        stride = m_.bufferViews[a.bufferView].byteStride;
+      p = checked_bytes(a.bufferView, a.byteOffset, element, stride, a.count, where);
+    }
+    std::vector<T> out(a.count * components, T(0));
+    if (p) {
+      for (size_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < components; ++c)
+          out[i * components + c] = T(load_component(p + i * stride + size_t(c) * size, a.componentType, a.normalized));
+    }
+    if (a.sparse.isSparse) apply_sparse(a, size, components, where, out);
+    return out;
+  }
+
+  template <class T>
+  void apply_sparse(const tinygltf::Accessor& a, int size, int components, const std::string& where,
+                    std::vector<T>& out) const {
+    if (a.sparse.count < 0) fail(where + " has a negative sparse count");
+    size_t n = size_t(a.sparse.count);
+    int index_type = a.sparse.indices.componentType;
+    int index_size = component_size(index_type);
+    if (index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        index_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(where + " has sparse indices of invalid componentType " + std::to_string(index_type));
+    if (a.sparse.indices.byteOffset < 0 || a.sparse.values.byteOffset < 0) fail(where + " has a negative sparse byteOffset");
+    size_t element = size_t(size) * components;
+    const unsigned char* idx = checked_bytes(a.sparse.indices.bufferView, a.sparse.indices.byteOffset, index_size,
+                                             index_size, n, where + " sparse indices");
+    const unsigned char* val = checked_bytes(a.sparse.values.bufferView, a.sparse.values.byteOffset, element, element, n,
+                                             where + " sparse values");
+    for (size_t k = 0; k < n; ++k) {
+      double target = load_component(idx + k * index_size, index_type, false);
+      if (target >= double(a.count))
+        fail(where + " sparse index " + std::to_string((unsigned long long)target) + " >= count " + std::to_string(a.count));
+      for (int c = 0; c < components; ++c)
+        out[size_t(target) * components + c] =
+            T(load_component(val + k * element + size_t(c) * size, a.componentType, a.normalized));
+    }
+  }
+
+  void require_types(int index, std::initializer_list<int> allowed, bool normalized_only, const std::string& what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    for (int t : allowed)
+      if (a.componentType == t && (!normalized_only || a.normalized || t == TINYGLTF_COMPONENT_TYPE_FLOAT)) return;
+    fail(what + " (accessor " + std::to_string(index) + ") has unsupported componentType " + std::to_string(a.componentType) +
+         (a.normalized ? " (normalized)" : ""));
+  }
+
+  // Decoded float attributes are cached: meshes are often instanced, and exporters let many
+  // primitives share one vertex accessor.
+  const std::vector<float>& float_attribute(int index, int components, const std::string& semantic,
+                                            const std::string& what) {
+    auto it = float_cache_.find(index);
+    if (it != float_cache_.end()) return it->second;
+    std::vector<float> values = read_accessor<float>(index, components, what + " " + semantic);
+    for (size_t i = 0; i < values.size(); ++i)
+      if (!std::isfinite(values[i]))
+        fail(what + " " + semantic + " has a non-finite value (NaN or Inf) at vertex " + std::to_string(i / components));
+    return float_cache_.emplace(index, std::move(values)).first->second;
+  }
+
+  // ---- geometry ----
+
+  struct Attributes {
+    const std::vector<float>* positions = nullptr;
+    const std::vector<float>* normals = nullptr;
+    const std::vector<float>* uvs = nullptr;
+    size_t count = 0;
+  };
+
+  Attributes read_attributes(const tinygltf::Primitive& prim, const std::string& what) {
+    using namespace std::string_literals;
+    constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE,
+                  UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, S = TINYGLTF_COMPONENT_TYPE_SHORT,
+                  US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    Attributes at;
+    int pos = prim.attributes.at("POSITION");
+    if (quantization_) require_types(pos, {F, B, UB, S, US}, false, what + " POSITION");
+    else require_types(pos, {F}, false, what + " POSITION");
+    at.positions = &float_attribute(pos, 3, "POSITION", what);
+    at.count = at.positions->size() / 3;
+    auto same_count = [&](const std::vector<float>& v, size_t comps, const char* semantic) {
+      if (v.size() / comps != at.count)
+        fail(what + " " + semantic + " has " + std::to_string(v.size() / comps) + " elements but POSITION has " +
+             std::to_string(at.count));
+    };
+    if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
+      if (quantization_) require_types(it->second, {F, B, S}, true, what + " NORMAL");
+      else require_types(it->second, {F}, false, what + " NORMAL");
+      at.normals = &float_attribute(it->second, 3, "NORMAL", what);
+      same_count(*at.normals, 3, "NORMAL");
+    }
+    if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
+      if (quantization_) require_types(it->second, {F, B, UB, S, US}, false, what + " TEXCOORD_0");
+      else require_types(it->second, {F, UB, US}, true, what + " TEXCOORD_0");
+      at.uvs = &float_attribute(it->second, 2, "TEXCOORD_0", what);
+      same_count(*at.uvs, 2, "TEXCOORD_0");
+    }
+    return at;
+  }
+
+  std::vector<uint32_t> read_indices(const tinygltf::Primitive& prim, size_t vertex_count, const std::string& what) const {
+    std::vector<uint32_t> idx;
+    if (prim.indices < 0) {
+      idx.resize(vertex_count);
+      std::iota(idx.begin(), idx.end(), 0u);
+      return idx;
+    }
+    require_types(prim.indices,
+                  {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT},
+                  false, what + " indices");
+    idx = read_accessor<uint32_t>(prim.indices, 1, what + " indices");
+    for (uint32_t i : idx)
+      if (i >= vertex_count)
+        fail(what + " has vertex index " + std::to_string(i) + " out of range (vertex count " + std::to_string(vertex_count) + ")");
+    return idx;
+  }
+
+  // TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN as a triangle list, in glTF's winding order.
+  std::vector<uvec3> assemble(int mode, const std::vector<uint32_t>& idx, const std::string& what) {
+    std::vector<uvec3> tris;
+    size_t n = idx.size();
+    if (mode == TINYGLTF_MODE_TRIANGLES) {
+      if (n % 3 != 0) warnings_.add("index count not a multiple of 3: trailing indices ignored");
+      for (size_t i = 0; i + 2 < n; i += 3) tris.emplace_back(idx[i], idx[i + 1], idx[i + 2]);
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+      for (size_t i = 0; i + 2 < n; ++i)
+        tris.push_back(i % 2 == 0 ? uvec3(idx[i], idx[i + 1], idx[i + 2]) : uvec3(idx[i + 1], idx[i], idx[i + 2]));
+    } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+      for (size_t i = 1; i + 1 < n; ++i) tris.emplace_back(idx[i], idx[i + 1], idx[0]);
+    }
+    return tris;
+  }
+
+  void add_mesh(const Instance& inst) {
+    int mesh_index = m_.nodes[inst.node].mesh;
+    if (size_t(mesh_index) >= m_.meshes.size())
+      fail(quoted_name("node", inst.node, m_.nodes[inst.node].name) + " refers to missing mesh " + std::to_string(mesh_index));
+    const tinygltf::Mesh& mesh = m_.meshes[mesh_index];
+    for (size_t p = 0; p < mesh.primitives.size(); ++p)
+      add_primitive(mesh.primitives[p], inst.world, quoted_name("mesh", mesh_index, mesh.name) + " primitive " + std::to_string(p));
+  }
+
+  static const char* mode_name(int mode) {
+    switch (mode) {
+      case TINYGLTF_MODE_POINTS: return "POINTS";
+      case TINYGLTF_MODE_LINE: return "LINES";
+      case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+      case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+      default: return nullptr;
+    }
+  }
+
+  void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& what) {
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      const char* name = mode_name(mode);
+      warnings_.add(name ? std::string(name) + " primitives skipped (only triangles are rendered)"
+                         : "primitives of unknown mode " + std::to_string(mode) + " skipped");
+      return;
+    }
+    if (!prim.attributes.count("POSITION")) {
+      warnings_.add("primitives without POSITION skipped");
+      return;
+    }
+    if (!prim.targets.empty()) warnings_.add("morph targets ignored: the base shape is rendered");
+    int gltf_material = prim.material;
+    if (gltf_material >= int(m_.materials.size())) fail(what + " refers to missing material " + std::to_string(gltf_material));
+    uint32_t material = gltf_material < 0 ? uint32_t(m_.materials.size()) : uint32_t(gltf_material);
+
+    Attributes at = read_attributes(prim, what);
+    std::vector<uvec3> tris = assemble(mode, read_indices(prim, at.count, what), what);
+    if (at.normals) append_smooth(at, tris, world, material, what);
+    else append_flat(at, tris, world, material, what);
+  }
+
+  struct WorldTransform {
+    glm::dmat4 m;
+    glm::dmat3 normal;  // the cofactor matrix, sign-corrected: the inverse transpose up to scale
+    bool mirrored;
+  };
+
+  // The cofactor matrix (columns b x c, c x a, a x b) is the inverse transpose times det, so it
+  // transforms normals even when the matrix is singular.
+  static WorldTransform world_transform(const glm::dmat4& m) {
+    glm::dmat3 a(m);
+    double det = glm::determinant(a);
+    glm::dmat3 cof(glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1]));
+    return {m, det < 0 ? -cof : cof, det < 0};
+  }
+
+  vec3 world_position(const WorldTransform& t, const std::vector<float>& p, uint32_t i, const std::string& what) const {
+    glm::dvec4 w = t.m * glm::dvec4(p[3 * i], p[3 * i + 1], p[3 * i + 2], 1.0);
+    vec3 out(w);
+    if (!is_finite(out)) fail(what + " has a vertex that is not finite in world space (vertex " + std::to_string(i) + ")");
+    return out;
+  }
+
+  vec2 uv_of(const Attributes& at, uint32_t i) const {
+    return at.uvs ? vec2((*at.uvs)[2 * i], (*at.uvs)[2 * i + 1]) : vec2(0.0f);
+  }
+
+  // Unnormalised geometric normal of a triangle, oriented by its (possibly flipped) winding.
+  static vec3 face_normal(vec3 a, vec3 b, vec3 c) { return glm::cross(b - a, c - a); }
+
+  // Judged and normalised by the largest component, because the squared length of a tiny
+  // triangle's cross product (edges ~1e-12) underflows in float although the direction is fine.
+  static bool usable(vec3 n) { return is_finite(n) && max_component(glm::abs(n)) > 0.0f; }
+  static vec3 unit(vec3 n) { return glm::normalize(n / max_component(glm::abs(n))); }
+
+  uint32_t checked_vertex_base(size_t extra, const std::string& what) const {
+    if (scene_.positions.size() + extra >= size_t(UINT32_MAX)) fail("too many vertices (more than 2^32) at " + what);
+    return uint32_t(scene_.positions.size());
+  }
+
+  // Primitives with normals keep their shared vertices; only the vertices the triangles use are
+  // copied, because exporters often let many primitives index one large vertex accessor.
+  void append_smooth(const Attributes& at, const std::vector<uvec3>& tris, const glm::dmat4& world, uint32_t material,
+                     const std::string& what) {
+    WorldTransform t = world_transform(world);
+    std::unordered_map<uint32_t, uint32_t> remap;
+    std::vector<char> needs_normal;  // per new vertex: its normal had zero length
+    auto vertex = [&](uint32_t i) -> uint32_t {
+      auto [it, fresh] = remap.try_emplace(i, 0);
+      if (!fresh) return it->second;
+      it->second = checked_vertex_base(1, what);
+      scene_.positions.push_back(world_position(t, *at.positions, i, what));
+      const auto& n = *at.normals;
+      vec3 wn(t.normal * glm::dvec3(n[3 * i], n[3 * i + 1], n[3 * i + 2]));
+      needs_normal.push_back(!usable(wn));
+      scene_.normals.push_back(usable(wn) ? unit(wn) : vec3(0.0f));
+      scene_.uvs.push_back(uv_of(at, i));
+      return it->second;
+    };
+    uint32_t base = uint32_t(scene_.positions.size());
+    for (uvec3 tri : tris) {
+      if (t.mirrored) std::swap(tri.y, tri.z);
+      uvec3 v(vertex(tri.x), vertex(tri.y), vertex(tri.z));
+      vec3 fn = face_normal(scene_.positions[v.x], scene_.positions[v.y], scene_.positions[v.z]);
+      if (!usable(fn)) {
+        ++degenerate_triangles_;
+        continue;
+      }
+      for (int k = 0; k < 3; ++k)
+        if (needs_normal[v[k] - base]) scene_.normals[v[k]] += fn;  // area-weighted geometric normal
+      scene_.triangles.push_back(v);
+      scene_.triangle_material.push_back(material);
+    }
+    size_t replaced = 0;
+    for (size_t k = 0; k < needs_normal.size(); ++k) {
+      if (!needs_normal[k]) continue;
+      vec3& n = scene_.normals[base + k];
+      n = usable(n) ? unit(n) : vec3(0.0f, 0.0f, 1.0f);  // only on dropped triangles
+      ++replaced;
+    }
+    if (replaced > 0) warnings_.add("zero-length vertex normals replaced by the geometric normal");
+  }
+
+  // glTF: without NORMAL, a primitive is flat shaded; each triangle gets its own three vertices.
+  void append_flat(const Attributes& at, const std::vector<uvec3>& tris, const glm::dmat4& world, uint32_t material,
+                   const std::string& what) {
+    warnings_.add("primitives without NORMAL: flat normals generated");
+    WorldTransform t = world_transform(world);
+    for (uvec3 tri : tris) {
+      if (t.mirrored) std::swap(tri.y, tri.z);
+      vec3 p[3];
+      for (int k = 0; k < 3; ++k) p[k] = world_position(t, *at.positions, tri[k], what);
+      vec3 fn = face_normal(p[0], p[1], p[2]);
+      if (!usable(fn)) {
+        ++degenerate_triangles_;
+        continue;
+      }
+      uint32_t b = checked_vertex_base(3, what);
+      for (int k = 0; k < 3; ++k) {
+        scene_.positions.push_back(p[k]);
+        scene_.normals.push_back(unit(fn));
+        scene_.uvs.push_back(uv_of(at, tri[k]));
+      }
+      scene_.triangles.emplace_back(b, b + 1, b + 2);
+      scene_.triangle_material.push_back(material);
+    }
+  }
+
+  // ---- cameras and lights ----
+
+  static vec3 world_point(const glm::dmat4& m) { return vec3(m[3]); }
+  static glm::dvec3 world_direction(const glm::dmat4& m, glm::dvec3 local) { return glm::dmat3(m) * local; }
+
+  void add_camera(const Instance& inst) {
+    const tinygltf::Node& node = m_.nodes[inst.node];
+    if (size_t(node.camera) >= m_.cameras.size())
+      fail(quoted_name("node", inst.node, node.name) + " refers to missing camera " + std::to_string(node.camera));
+    const tinygltf::Camera& cam = m_.cameras[node.camera];
+    std::string name = !cam.name.empty() ? cam.name : !node.name.empty() ? node.name : "camera" + std::to_string(node.camera);
+    if (cam.type != "perspective") {
+      warnings_.add("camera '" + name + "' is " + (cam.type.empty() ? "untyped" : cam.type) + ": skipped (only perspective cameras)");
+      return;
+    }
+    double yfov = cam.perspective.yfov, aspect = cam.perspective.aspectRatio;
+    if (!(yfov > 0.0 && yfov < kPi)) fail("camera '" + name + "' has yfov " + std::to_string(yfov) + " (must be in (0, pi))");
+    if (!(aspect >= 0.0 && std::isfinite(aspect))) fail("camera '" + name + "' has aspectRatio " + std::to_string(aspect));
+    glm::dvec3 f = world_direction(inst.world, {0, 0, -1}), u = world_direction(inst.world, {0, 1, 0});
+    double flen = glm::length(f);
+    glm::dvec3 fn = f / flen;
+    glm::dvec3 up = u - glm::dot(u, fn) * fn;  // Gram-Schmidt: shear in the node matrix is dropped
+    double ulen = glm::length(up);
+    if (!(flen > 0.0) || !(ulen > 0.0) || !std::isfinite(flen + ulen)) {
+      warnings_.add("camera '" + name + "' has a degenerate node transform: skipped");
+      return;
+    }
+    Camera c;
+    c.name = name;
+    c.eye = world_point(inst.world);
+    c.forward = vec3(fn);
+    c.up = vec3(up / ulen);
+    c.yfov = float(yfov);
+    c.aspect = float(aspect);
+    scene_.cameras.push_back(c);
+  }
+
+  void add_light(const Instance& inst, const tinygltf::Value& ext) {
+    const tinygltf::Node& node = m_.nodes[inst.node];
+    const tinygltf::Value* index_value = member(ext, "light");
+    int index = index_value && index_value->IsNumber() ? index_value->GetNumberAsInt() : -1;
+    if (index < 0 || size_t(index) >= m_.lights.size())
+      fail(quoted_name("node", inst.node, node.name) + " refers to missing light " + std::to_string(index));
+    const tinygltf::Light& l = m_.lights[index];
+    PunctualLight out;
+    out.name = !l.name.empty() ? l.name : !node.name.empty() ? node.name : "light" + std::to_string(index);
+    std::string what = "light '" + out.name + "'";
+    if (l.type == "point") out.type = LightType::Point;
+    else if (l.type == "spot") out.type = LightType::Spot;
+    else if (l.type == "directional") out.type = LightType::Directional;
+    else {
+      warnings_.add(what + " has unknown type '" + l.type + "': skipped");
+      return;
+    }
+    glm::dvec3 color(1.0);
+    if (!l.color.empty()) {
+      if (l.color.size() != 3) fail(what + " has a color of " + std::to_string(l.color.size()) + " numbers (needs 3)");
+      color = glm::dvec3(l.color[0], l.color[1], l.color[2]);
+    }
+    out.intensity = vec3(color * l.intensity);
+    if (!is_finite(out.intensity) || glm::any(glm::lessThan(out.intensity, vec3(0.0f))))
+      fail(what + " has a negative or non-finite color * intensity");
+    if (l.range > 0.0) warnings_.add("light range ignored: pure inverse-square falloff, as in the references");
+    out.position = world_point(inst.world);
+    glm::dvec3 dir = world_direction(inst.world, {0, 0, -1});
+    double len = glm::length(dir);
+    if (out.type != LightType::Point && !(len > 0.0 && std::isfinite(len)))
+      fail(what + " has a degenerate node transform (no direction)");
+    out.direction = len > 0.0 ? vec3(dir / len) : vec3(0.0f, 0.0f, -1.0f);
+    if (out.type == LightType::Spot) set_cone(l.spot, what, out);
+    scene_.lights.push_back(out);
+  }
+
+  // glTF requires 0 <= inner < outer <= pi/2; values outside are clamped with a warning.
+  void set_cone(const tinygltf::SpotLight& spot, const std::string& what, PunctualLight& out) {
+    double outer = spot.outerConeAngle, inner = spot.innerConeAngle;
+    if (!std::isfinite(outer) || !std::isfinite(inner)) fail(what + " has a non-finite cone angle");
+    double clamped_outer = std::clamp(outer, 0.0, double(kPi) / 2.0);
+    double clamped_inner = std::clamp(inner, 0.0, clamped_outer);
+    if (clamped_outer != outer || clamped_inner != inner)
+      warnings_.add(what + " cone angles outside 0 <= inner <= outer <= pi/2: clamped");
+    out.cos_outer = float(std::cos(clamped_outer));
+    out.cos_inner = float(std::cos(clamped_inner));
+  }
+
+  // Looks down -Z at the bounding box from +Z, far enough that its bounding sphere fits the
+  // vertical field of view (and the horizontal one at any aspect >= 1).
+  void add_auto_camera() {
+    Camera c;
+    c.name = "auto";
+    c.yfov = 0.8f;
+    float radius = std::max(0.5f * scene_.bounds.diagonal(), 1e-6f);
+    float distance = radius / std::sin(0.5f * c.yfov);
+    c.eye = scene_.bounds.center() + vec3(0.0f, 0.0f, distance);
+    scene_.cameras.push_back(c);
+    warnings_.add("scene has no perspective camera: added camera 'auto' framing the bounding box from +Z");
+  }
+
+  bool scene_has_lights() const {
+    if (!scene_.lights.empty()) return true;
+    for (uint32_t m : scene_.triangle_material)
+      if (scene_.material_emits(m)) return true;
+    return false;
+  }
+
+  // ---- materials and textures ----
+
+  void build_materials() {
+    std::vector<char> used(m_.materials.size() + 1, 0);
+    for (uint32_t m : scene_.triangle_material) used[m] = 1;
+    for (size_t i = 0; i < m_.materials.size(); ++i) scene_.materials.push_back(convert_material(int(i), used[i]));
+    if (used.back()) {
+      Material def;  // glTF's default material: white, metallic 1, roughness 1
+      def.name = "default";
+      scene_.materials.push_back(def);
+    }
+  }
+
+  vec3 factor3(const std::vector<double>& v, size_t expected, vec3 fallback, const std::string& what) const {
+    if (v.empty()) return fallback;
+    if (v.size() != expected) fail(what + " has " + std::to_string(v.size()) + " numbers (needs " + std::to_string(expected) + ")");
+    if (!all_finite(v)) fail(what + " is not finite");
+    return vec3(float(v[0]), float(v[1]), float(v[2]));
+  }
+
+  float unit_factor(double v, const std::string& what) {
+    if (!std::isfinite(v)) fail(what + " is not finite");
+    if (v < 0.0 || v > 1.0) warnings_.add(what + " outside [0, 1]: clamped");
+    return float(std::clamp(v, 0.0, 1.0));
+  }
+
+  static double emissive_strength(const tinygltf::Material& g) {
+    const tinygltf::Value* ext = extension(g.extensions, "KHR_materials_emissive_strength");
+    return number_or(ext ? member(*ext, "emissiveStrength") : nullptr, 1.0);
+  }
+
+  // Unused materials keep their factors but no textures, so that unused images are never read.
+  Material convert_material(int index, bool used) {
+    const tinygltf::Material& g = m_.materials[index];
+    std::string what = "material '" + (g.name.empty() ? std::to_string(index) : g.name) + "'";
+    const auto& pbr = g.pbrMetallicRoughness;
+    Material out;
+    out.name = g.name.empty() ? "material" + std::to_string(index) : g.name;
+    vec3 base = factor3(pbr.baseColorFactor, 4, vec3(1.0f), what + " baseColorFactor");
+    if (glm::any(glm::lessThan(base, vec3(0.0f))) || glm::any(glm::greaterThan(base, vec3(1.0f))))
+      warnings_.add(what + " baseColorFactor outside [0, 1]: clamped");
+    out.base_color = glm::clamp(base, vec3(0.0f), vec3(1.0f));
+    out.metallic = unit_factor(pbr.metallicFactor, what + " metallicFactor");
+    out.roughness = unit_factor(pbr.roughnessFactor, what + " roughnessFactor");
+    out.emission = factor3(g.emissiveFactor, 3, vec3(0.0f), what + " emissiveFactor") * float(emissive_strength(g));
+    if (!is_finite(out.emission) || glm::any(glm::lessThan(out.emission, vec3(0.0f))))
+      fail(what + " has a negative or non-finite emission (emissiveFactor * emissiveStrength)");
+    out.double_sided = g.doubleSided;
+    if (used) attach_textures(g, what, out);
+    return out;
+  }
+
+  void attach_textures(const tinygltf::Material& g, const std::string& what, Material& out) {
+    if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE")
+      warnings_.add("alpha modes other than OPAQUE are ignored: surfaces are opaque");
+    if (g.normalTexture.index >= 0 || g.occlusionTexture.index >= 0)
+      warnings_.add("normal and occlusion textures are ignored");
+    for (const auto& [name, value] : g.extensions)  // those in extensionsUsed were reported already
+      if (!contains(kImplementedExtensions, name) && !contains(m_.extensionsUsed, std::string_view(name)))
+        warnings_.add("material extension " + name + " ignored");
+    const auto& pbr = g.pbrMetallicRoughness;
+    out.base_color_texture = texture_slot(pbr.baseColorTexture, true, what + " baseColorTexture");
+    out.metallic_roughness_texture = texture_slot(pbr.metallicRoughnessTexture, false, what + " metallicRoughnessTexture");
+    out.emissive_texture = texture_slot(g.emissiveTexture, true, what + " emissiveTexture");
+  }
+
+  bool identity_transform(const tinygltf::Value& t) const {
+    auto vec_is = [&](const char* key, double value) {
+      const tinygltf::Value* v = member(t, key);
+      if (!v) return true;
+      for (size_t i = 0; i < v->ArrayLen(); ++i)
+        if (number_or(&v->Get(int(i)), value) != value) return false;
+      return true;
+    };
+    return vec_is("offset", 0.0) && vec_is("scale", 1.0) && number_or(member(t, "rotation"), 0.0) == 0.0;
+  }
+
+  int texture_slot(const tinygltf::TextureInfo& info, bool srgb, const std::string& what) {
+    if (info.index < 0) return -1;
+    if (size_t(info.index) >= m_.textures.size()) fail(what + " refers to missing texture " + std::to_string(info.index));
+    if (info.texCoord != 0) warnings_.add("texCoord sets other than 0 are not supported: TEXCOORD_0 used");
+    if (const tinygltf::Value* tt = extension(info.extensions, "KHR_texture_transform"); tt && !identity_transform(*tt)) {
+      if (texture_transform_required_) fail(what + " uses KHR_texture_transform, which is required but not implemented");
+      warnings_.add("KHR_texture_transform ignored");
+    }
+    const tinygltf::Texture& tex = m_.textures[info.index];
+    if (tex.source < 0) {
+      warnings_.add("textures without a core image source (e.g. KTX2/WebP extensions) ignored");
+      return -1;
+    }
+    if (size_t(tex.source) >= m_.images.size()) fail(what + " refers to missing image " + std::to_string(tex.source));
+    if (tex.sampler >= int(m_.samplers.size())) fail(what + " refers to missing sampler " + std::to_string(tex.sampler));
+    TextureKey key{tex.source, srgb, std::max(tex.sampler, -1)};
+    auto [it, fresh] = texture_slots_.try_emplace(key, int(texture_keys_.size()));
+    if (fresh) texture_keys_.push_back(key);
+    return it->second;
+  }
+
+  std::string image_label(int index) const {
+    const tinygltf::Image& img = m_.images[index];
+    if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) return "'" + img.uri + "'";
+    return quoted_name("image", index, img.name);
+  }
+
+  // The encoded bytes of an image: from its file or data URI (kept by keep_encoded_image), or
+  // from its bufferView, bounds-checked.
+  std::pair<const unsigned char*, size_t> encoded_image(int index) const {
+    const tinygltf::Image& img = m_.images[index];
+    if (img.bufferView >= 0) {
+      size_t len = size_t(img.bufferView) < m_.bufferViews.size() ? m_.bufferViews[img.bufferView].byteLength : 0;
+      return {checked_bytes(img.bufferView, 0, len, 1, 1, "image " + std::to_string(index)), len};
+    }
+    if (img.image.empty()) fail("image " + image_label(index) + " not found or empty");
+    return {img.image.data(), img.image.size()};
+  }
+
+  // glTF 2.0 allows PNG and JPEG only; stb would also read other formats, some of them wrongly
+  // (16-bit PNM), so anything else is refused rather than risk a silently wrong texture.
+  void require_png_or_jpeg(int index, std::pair<const unsigned char*, size_t> bytes) const {
+    auto [p, n] = bytes;
+    bool png = n >= 8 && std::memcmp(p, "\x89PNG\r\n\x1a\n", 8) == 0;
+    bool jpeg = n >= 3 && p[0] == 0xFF && p[1] == 0xD8 && p[2] == 0xFF;
+    if (!png && !jpeg) fail("image " + image_label(index) + " is neither PNG nor JPEG (the formats glTF 2.0 allows)");
+  }
+
+  // Images decode in parallel (stb via tinygltf), then each (image, colour space, sampler)
+  // becomes one float texture, also in parallel.
+  void decode_textures() {
+    std::vector<int> image_ids;
+    for (const TextureKey& k : texture_keys_)
+      if (std::find(image_ids.begin(), image_ids.end(), k.image) == image_ids.end()) image_ids.push_back(k.image);
+    std::vector<std::pair<const unsigned char*, size_t>> encoded;
+    for (int id : image_ids) {
+      encoded.push_back(encoded_image(id));
+      require_png_or_jpeg(id, encoded.back());
+    }
+    std::vector<tinygltf::Image> decoded(image_ids.size());
+    std::vector<std::string> errors(image_ids.size());
+    tbb::parallel_for(size_t(0), image_ids.size(), [&](size_t i) {
+      std::string err, warn;
+      auto [bytes, size] = encoded[i];
+      if (size > size_t(INT32_MAX)) err = "image larger than 2 GiB";
+      else if (!tinygltf::LoadImageData(&decoded[i], image_ids[i], &err, &warn, 0, 0, bytes, int(size), nullptr) && err.empty())
+        err = "cannot decode";
+      else if (!valid_decoded(decoded[i]))
+        err = "unsupported pixel layout (" + std::to_string(decoded[i].component) + " channels, " +
+              std::to_string(decoded[i].bits) + " bits)";
+      errors[i] = err;
+    });
+    for (size_t i = 0; i < image_ids.size(); ++i)
+      if (!errors[i].empty()) fail("cannot decode image " + image_label(image_ids[i]) + ": " + first_line(errors[i]));
+    std::vector<size_t> slot_of_key(texture_keys_.size());
+    for (size_t k = 0; k < texture_keys_.size(); ++k)
+      slot_of_key[k] = std::find(image_ids.begin(), image_ids.end(), texture_keys_[k].image) - image_ids.begin();
+    scene_.textures.resize(texture_keys_.size());
+    tbb::parallel_for(size_t(0), texture_keys_.size(), [&](size_t k) {
+      scene_.textures[k] = to_texture(decoded[slot_of_key[k]], texture_keys_[k].srgb);
+    });
+    for (size_t k = 0; k < texture_keys_.size(); ++k) apply_sampler(texture_keys_[k].sampler, scene_.textures[k]);
+  }
+
+  void apply_sampler(int sampler, Texture& t) {
+    if (sampler < 0) return;  // glTF: no sampler = repeat, auto filtering
+    const tinygltf::Sampler& s = m_.samplers[sampler];
+    t.wrap_s = wrap_mode(s.wrapS, warnings_);
+    t.wrap_t = wrap_mode(s.wrapT, warnings_);
+    t.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
+  }
+
+  const tinygltf::Model& m_;
+  const std::string& file_;
+  Scene& scene_;
+  Warnings warnings_;
+  bool quantization_ = false;
+  bool texture_transform_required_ = false;
+  size_t degenerate_triangles_ = 0;
+  std::unordered_map<int, std::vector<float>> float_cache_;
+  std::map<TextureKey, int> texture_slots_;
+  std::vector<TextureKey> texture_keys_;
+};
+
+tinygltf::Model parse(std::string_view bytes, const std::string& base_dir, const std::string& name) {
+  if (bytes.size() > size_t(UINT32_MAX)) throw Error(name + ": file larger than 4 GiB");
+  tinygltf::TinyGLTF gltf;
+  gltf.SetImageLoader(&keep_encoded_image, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
+  bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                               unsigned(bytes.size()), base_dir)
+                   : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
+  if (!ok) throw Error(name + ": " + tinygltf_error(err.empty() ? warn : err));
+  return model;
+}
+
+}  // namespace
+
+Scene load_gltf_from_memory(std::string_view bytes, const std::string& base_dir, const std::string& name) {
+  tinygltf::Model model = parse(bytes, base_dir, name);
+  Scene scene;
+  scene.source = name;
+  GltfConverter(model, name, scene).run();
+  return scene;
+}
+
+Scene load_gltf(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) throw Error(path + ": file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (!in.good() && !in.eof()) throw Error(path + ": cannot read file");
+  std::string base_dir = std::filesystem::path(path).parent_path().string();
+  return load_gltf_from_memory(bytes, base_dir, path);
+}
+
+}  // namespace sst

@@ -1,0 +1,47 @@
+#include "core/util/machine_info.h"
+
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <string>
+#include <thread>
+
+namespace sst {
+namespace {
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+    }
+  }
+  return "unknown";
+}
+}  // namespace
+
+nlohmann::json machine_info() {
+  nlohmann::json j;
+  char host[256] = {0};
+  gethostname(host, sizeof(host) - 1);
+  j["host"] = host;
+  j["cpu"] = cpu_model();
+  j["hardware_threads"] = std::thread::hardware_concurrency();
+  struct utsname u;
+  if (uname(&u) == 0) j["os"] = std::string(u.sysname) + " " + u.release + " " + u.machine;
+  j["compiler"] = __VERSION__;
+  return j;
+}
+
+std::string utc_timestamp() {
+  std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char text[32];
+  std::strftime(text, sizeof(text), "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+}  // namespace sst

@@ -1,0 +1,26 @@
+#include "core/util/stage_timer.h"
+
+namespace sst {
+
+void StageTimer::add(const std::string& stage, double ms) {
+  for (auto& [name, total] : stages_)
+    if (name == stage) {
+      total += ms;
+      return;
+    }
+  stages_.emplace_back(stage, ms);
+}
+
+double StageTimer::ms(const std::string& stage) const {
+  for (const auto& [name, total] : stages_)
+    if (name == stage) return total;
+  return 0.0;
+}
+
+nlohmann::json StageTimer::to_json() const {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& [name, total] : stages_) j[name] = total;
+  return j;
+}
+
+}  // namespace sst

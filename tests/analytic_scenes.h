@@ -1,0 +1,19 @@
+// Scenes with known radiance, built in code: a Lambert plane under one punctual light, and a
+// closed emissive box (the "furnace"), whose radiance is a geometric series of its albedo.
+#pragma once
+#include "core/scene/scene.h"
+
+namespace sst::test {
+
+// A square plane z = 0 of half-size `half`, normal +z, Lambert albedo `albedo`, camera looking
+// straight down from (0, 0, camera_height) with the given vertical field of view.
+Scene lambert_plane(float albedo, float half, float camera_height, float yfov);
+
+// A closed axis-aligned cube of side `side` centred at the origin; every face diffuse with
+// `albedo` and emitting `emission` from both sides; camera at the centre looking down -z.
+Scene emissive_box(float albedo, float emission, float side);
+
+// Scales every position, light and camera of a scene by s (scene-scale tests).
+void scale_scene(Scene& scene, float s);
+
+}  // namespace sst::test

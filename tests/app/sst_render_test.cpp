@@ -1,0 +1,89 @@
+// sst-render end to end: the default scene, the JSON record, and every kind of bad input giving
+// one line and a non-zero exit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/image/image.h"
+#include "core/util/json_io.h"
+#include "tests/test_util.h"
+
+namespace sst {
+namespace {
+
+std::string render_cmd(const std::string& args) { return std::string(SST_RENDER_EXE) + " " + args; }
+
+// The output holds exactly one line, starting with "error: " and containing `needle`.
+void expect_one_line_error(const test::CommandResult& r, const std::string& needle) {
+  EXPECT_NE(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.rfind("error: ", 0), 0u) << r.output;
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  EXPECT_NE(r.output.find(needle), std::string::npos) << r.output;
+}
+
+TEST(SstRender, DefaultSceneWritesImageAovsAndRecord) {
+  auto dir = test::temp_dir();
+  auto exr = (dir / "cornell.exr").string();
+  auto png = (dir / "cornell.png").string();
+  auto r = test::run_command(render_cmd("-o " + exr + " -o " + png + " --width 48 --spp 2 -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output, "");  // --quiet
+  Image img = read_image(exr);
+  EXPECT_EQ(img.width, 48);
+  EXPECT_EQ(img.height, 48);  // the camera's aspect ratio is 1
+  for (const char* layer : {"direct", "indirect", "albedo", "normal", "depth"})
+    EXPECT_NO_THROW(read_layer(exr, layer)) << layer;
+  EXPECT_TRUE(std::filesystem::exists(png));
+
+  nlohmann::json rec = read_json_file((dir / "cornell.json").string());
+  EXPECT_EQ(rec["schema_version"], 1);
+  EXPECT_EQ(rec["tool"], "sst-render");
+  EXPECT_FALSE(rec["revision"].get<std::string>().empty());
+  EXPECT_TRUE(rec["machine"].contains("cpu"));
+  EXPECT_EQ(rec["scene"]["source"], "builtin:cornell-box");
+  EXPECT_EQ(rec["options"]["width"], 48);
+  EXPECT_EQ(rec["options"]["spp"], 2);
+  EXPECT_EQ(rec["method_params"]["max_bounces"], 8);
+  for (const char* stage : {"load", "accel_build", "render", "write"})
+    EXPECT_TRUE(rec["timings_ms"].contains(stage)) << stage;
+  EXPECT_EQ(rec["counters"]["primary_rays"], 48 * 48 * 2);
+  EXPECT_EQ(rec["counters"]["nonfinite_samples"], 0);
+  EXPECT_GT(rec["counters"]["mrays_per_s"].get<double>(), 0.0);
+}
+
+TEST(SstRender, RepeatReportsMedianMinMax) {
+  auto dir = test::temp_dir();
+  auto r = test::run_command(render_cmd("-o " + (dir / "a.exr").string() + " --width 16 --spp 1 --repeat 3 -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  nlohmann::json rec = read_json_file((dir / "a.json").string());
+  EXPECT_EQ(rec["repeat"], 3);
+  auto t = rec["timings_ms"]["render"];
+  EXPECT_LE(t["min"].get<double>(), t["median"].get<double>());
+  EXPECT_LE(t["median"].get<double>(), t["max"].get<double>());
+}
+
+TEST(SstRender, BadInputIsOneLineAndNonZeroExit) {
+  auto dir = test::temp_dir();
+  std::string out = " -o " + (dir / "x.exr").string() + " --width 8 --spp 1 -q";
+  expect_one_line_error(test::run_command(render_cmd("/no/such/scene.gltf" + out)), "/no/such/scene.gltf");
+  expect_one_line_error(test::run_command(render_cmd("--method ptt" + out)), "did you mean 'pt'");
+  expect_one_line_error(test::run_command(render_cmd("--spp 0 -o " + (dir / "y.exr").string())), "spp");
+  expect_one_line_error(test::run_command(render_cmd("--max-bounces many" + out)), "--max-bounces");
+  expect_one_line_error(test::run_command(render_cmd("--max-bounces -2" + out)), "max_bounces");
+  expect_one_line_error(test::run_command(render_cmd("--camera nope" + out)), "nope");
+  expect_one_line_error(test::run_command(render_cmd("-o " + (dir / "x.bmp").string() + " --width 8 --spp 1 -q")), ".bmp");
+  auto unknown_flag = test::run_command(render_cmd("--no-such-flag" + out));
+  EXPECT_NE(unknown_flag.exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));  // nothing half-written
+}
+
+TEST(SstRender, ListMethodsShowsParameterTables) {
+  auto r = test::run_command(render_cmd("--list-methods"));
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.output.find("pt:"), std::string::npos);
+  EXPECT_NE(r.output.find("--max-bounces"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sst

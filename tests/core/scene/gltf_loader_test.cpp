@@ -1,0 +1,714 @@
+#include "core/scene/gltf_loader.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "core/util/error.h"
+#include "tests/test_util.h"
+
+namespace sst {
+namespace {
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+constexpr int kByte = 5121, kUShort = 5123, kUInt = 5125, kFloat = 5126;
+
+// Small glTF files for the tests: JSON built here, one binary buffer written beside it as a .bin
+// (or embedded, or packed into a .glb).
+class GltfBuilder {
+ public:
+  json doc = {{"asset", {{"version", "2.0"}}}};
+  std::string bin;
+
+  template <class T>
+  int view(const std::vector<T>& values, int stride = 0) {
+    while (bin.size() % 4) bin.push_back('\0');
+    json v = {{"buffer", 0}, {"byteOffset", bin.size()}, {"byteLength", values.size() * sizeof(T)}};
+    if (stride) v["byteStride"] = stride;
+    bin.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+    doc["bufferViews"].push_back(v);
+    return int(doc["bufferViews"].size()) - 1;
+  }
+  int accessor(int view_index, int component_type, size_t count, const std::string& type, size_t offset = 0,
+               bool normalized = false) {
+    json a = {{"bufferView", view_index}, {"componentType", component_type}, {"count", count}, {"type", type}};
+    if (offset) a["byteOffset"] = offset;
+    if (normalized) a["normalized"] = true;
+    doc["accessors"].push_back(a);
+    return int(doc["accessors"].size()) - 1;
+  }
+  int vec3s(const std::vector<float>& xyz) { return accessor(view(xyz), kFloat, xyz.size() / 3, "VEC3"); }
+  template <class T>
+  int indices(const std::vector<T>& idx, int component_type) {
+    return accessor(view(idx), component_type, idx.size(), "SCALAR");
+  }
+  int mesh(const json& primitive) {
+    doc["meshes"].push_back({{"primitives", json::array({primitive})}});
+    return int(doc["meshes"].size()) - 1;
+  }
+  int node(const json& n) {
+    doc["nodes"].push_back(n);
+    return int(doc["nodes"].size()) - 1;
+  }
+  void scene(const std::vector<int>& roots) {
+    doc["scenes"] = json::array({{{"nodes", roots}}});
+    doc["scene"] = 0;
+  }
+  int material(const json& m) {
+    doc["materials"].push_back(m);
+    return int(doc["materials"].size()) - 1;
+  }
+  // A triangle in the z = 0 plane facing +Z, with normals.
+  int triangle_mesh(int material = -1) {
+    json prim = {{"attributes", {{"POSITION", vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0})}, {"NORMAL", vec3s({0, 0, 1, 0, 0, 1, 0, 0, 1})}}}};
+    if (material >= 0) prim["material"] = material;
+    return mesh(prim);
+  }
+  fs::path write(const fs::path& dir, const std::string& name) {
+    fs::path gltf = dir / (name + ".gltf");
+    json d = doc;
+    if (!bin.empty()) {
+      std::ofstream(dir / (name + ".bin"), std::ios::binary) << bin;
+      d["buffers"] = json::array({{{"uri", name + ".bin"}, {"byteLength", bin.size()}}});
+    }
+    std::ofstream(gltf) << d.dump(1);
+    return gltf;
+  }
+  fs::path write_glb(const fs::path& dir, const std::string& name) {
+    json d = doc;
+    d["buffers"] = json::array({{{"byteLength", bin.size()}}});
+    std::string text = d.dump();
+    while (text.size() % 4) text.push_back(' ');
+    std::string payload = bin;
+    while (payload.size() % 4) payload.push_back('\0');
+    std::string out = "glTF";
+    auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
+    u32(2);
+    u32(uint32_t(12 + 8 + text.size() + 8 + payload.size()));
+    u32(uint32_t(text.size()));
+    u32(0x4E4F534A);  // JSON
+    out += text;
+    u32(uint32_t(payload.size()));
+    u32(0x004E4942);  // BIN
+    out += payload;
+    fs::path glb = dir / (name + ".glb");
+    std::ofstream(glb, std::ios::binary) << out;
+    return glb;
+  }
+};
+
+// The message of the sst::Error that loading `path` throws ("" when it loads).
+std::string load_error(const fs::path& path) {
+  try {
+    load_gltf(path.string());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_one_line_naming(const std::string& message, const fs::path& file, const std::string& problem) {
+  EXPECT_NE(message.find(file.string()), std::string::npos) << message;
+  EXPECT_NE(message.find(problem), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+bool has_warning(const Scene& s, const std::string& fragment) {
+  for (const std::string& w : s.warnings)
+    if (w.find(fragment) != std::string::npos) return true;
+  return false;
+}
+
+void expect_near(vec3 a, vec3 b, float tol = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, tol);
+  EXPECT_NEAR(a.y, b.y, tol);
+  EXPECT_NEAR(a.z, b.z, tol);
+}
+
+vec3 geometric_normal(const Scene& s, size_t t) {
+  uvec3 tri = s.triangles[t];
+  return glm::normalize(glm::cross(s.positions[tri.y] - s.positions[tri.x], s.positions[tri.z] - s.positions[tri.x]));
+}
+
+// A PNG with uncompressed (stored) deflate blocks: enough for tiny test images without zlib.
+// `pixels` are the raw samples, row by row, 16-bit ones big-endian as PNG stores them.
+fs::path write_png(const fs::path& path, int width, int height, int bit_depth, int color_type,
+                   const std::vector<uint8_t>& pixels) {
+  auto crc32 = [](const std::string& data) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (unsigned char byte : data) {
+      c ^= byte;
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
+  };
+  size_t row_bytes = pixels.size() / size_t(height);
+  std::string raw;
+  for (int y = 0; y < height; ++y) {
+    raw.push_back('\0');  // filter: none
+    raw.append(reinterpret_cast<const char*>(pixels.data()) + y * row_bytes, row_bytes);
+  }
+  uint32_t a = 1, b = 0;
+  for (unsigned char byte : raw) {
+    a = (a + byte) % 65521;
+    b = (b + a) % 65521;
+  }
+  uint16_t len = uint16_t(raw.size());
+  std::string z = {char(0x78), char(0x01), char(0x01), char(len & 0xFF), char(len >> 8), char(~len & 0xFF), char((~len >> 8) & 0xFF)};
+  z += raw + be32((b << 16) | a);
+  std::string ihdr = be32(uint32_t(width)) + be32(uint32_t(height)) + std::string{char(bit_depth), char(color_type), 0, 0, 0};
+  std::ofstream(path, std::ios::binary) << "\x89PNG\r\n\x1a\n" + chunk("IHDR", ihdr) + chunk("IDAT", z) + chunk("IEND", "");
+  return path;
+}
+
+// A material whose baseColorTexture is the image `uri`.
+GltfBuilder textured_triangle(const std::string& uri) {
+  GltfBuilder b;
+  b.doc["images"] = json::array({{{"uri", uri}}});
+  b.doc["textures"] = json::array({{{"source", 0}}});
+  int mat = b.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}});
+  b.scene({b.node({{"mesh", b.triangle_mesh(mat)}})});
+  return b;
+}
+
+// ---- errors ----
+
+TEST(GltfLoader, MissingFileIsAnErrorNamingIt) {
+  fs::path p = test::temp_dir() / "nope.gltf";
+  expect_one_line_naming(load_error(p), p, "not found");
+}
+
+TEST(GltfLoader, MalformedJsonIsAnError) {
+  fs::path p = test::temp_dir() / "bad.gltf";
+  std::ofstream(p) << "{ \"asset\": { \"version\": \"2.0\" }, \"nodes\": [ }";
+  expect_one_line_naming(load_error(p), p, "malformed JSON");
+}
+
+TEST(GltfLoader, MissingBufferFileIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  fs::path p = b.write(dir, "scene");
+  fs::remove(dir / "scene.bin");
+  expect_one_line_naming(load_error(p), p, "buffer file not found: scene.bin");
+}
+
+TEST(GltfLoader, ShortBufferFileIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  fs::path p = b.write(dir, "scene");
+  fs::resize_file(dir / "scene.bin", 20);
+  expect_one_line_naming(load_error(p), p, "scene.bin has 20 bytes, the glTF says 72");
+}
+
+TEST(GltfLoader, AccessorBeyondItsBufferViewIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  b.doc["accessors"][0]["count"] = 4;  // 48 bytes wanted from a 36-byte view
+  fs::path p = b.write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "reaches beyond bufferView 0");
+}
+
+TEST(GltfLoader, BufferViewBeyondItsBufferIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  b.doc["bufferViews"][1]["byteOffset"] = 1000;
+  fs::path p = b.write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "buffer 0 is too short for bufferView 1");
+}
+
+TEST(GltfLoader, IndexOutOfRangeIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  int idx = b.indices(std::vector<uint16_t>{0, 1, 3, 0, 0}, kUShort);  // 5 elements keep the view 4-aligned
+  b.doc["accessors"][idx]["count"] = 3;
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}})});
+  fs::path p = b.write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "vertex index 3 out of range (vertex count 3)");
+}
+
+TEST(GltfLoader, NanVertexIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1, std::nanf(""), 0, 0, 1, 0});
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}})}})});
+  fs::path p = b.write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "POSITION has a non-finite value (NaN or Inf) at vertex 1");
+}
+
+TEST(GltfLoader, UnsupportedRequiredExtensionIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+  b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  fs::path p = b.write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "requires unsupported extension KHR_draco_mesh_compression");
+}
+
+TEST(GltfLoader, AcceptedRequiredExtensionLoads) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  b.doc["extensionsRequired"] = {"KHR_materials_emissive_strength"};
+  EXPECT_EQ(load_gltf(b.write(dir, "scene").string()).triangles.size(), 1u);
+}
+
+TEST(GltfLoader, SceneWithoutTrianglesIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0});
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 0}})}})});  // POINTS
+  fs::path p = b.write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "scene has no triangles");
+  GltfBuilder empty;
+  empty.scene({empty.node({{"name", "nothing"}})});
+  fs::path q = empty.write(dir, "empty");
+  expect_one_line_naming(load_error(q), q, "scene has no triangles");
+}
+
+TEST(GltfLoader, MissingImageIsAnErrorNamingIt) {
+  fs::path dir = test::temp_dir();
+  fs::path p = textured_triangle("missing-texture.png").write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "missing-texture.png");
+}
+
+TEST(GltfLoader, NodeCycleIsAnError) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int m = b.triangle_mesh();
+  b.node({{"mesh", m}, {"children", {1}}});
+  b.node({{"children", {0}}});
+  b.scene({0});
+  fs::path p = b.write(dir, "scene");
+  std::string msg = load_error(p);
+  EXPECT_NE(msg.find(p.string()), std::string::npos) << msg;
+  EXPECT_NE(msg.find("node"), std::string::npos) << msg;
+}
+
+// ---- geometry ----
+
+TEST(GltfLoader, NestedTrsHierarchyGivesWorldPositions) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({1, 0, 0, 0, 0, 0, 0, 0, 1});
+  int m = b.mesh({{"attributes", {{"POSITION", pos}}}});
+  const float h = std::sqrt(0.5f);
+  int child = b.node({{"mesh", m}, {"rotation", {0, 0, h, h}}, {"translation", {0, 1, 0}}});  // 90 deg about Z
+  int parent = b.node({{"children", {child}}, {"translation", {1, 0, 0}}, {"scale", {2, 2, 2}}});
+  // The same mesh under a matrix node: translation (0, 0, 5) in column-major order.
+  int mat = b.node({{"mesh", m}, {"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 5, 1}}});
+  b.scene({parent, mat});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 2u);
+  // local (1,0,0) -> rotated (0,1,0) -> +(0,1,0) = (0,2,0) -> scaled (0,4,0) -> +(1,0,0)
+  expect_near(s.positions[s.triangles[0].x], vec3(1, 4, 0));
+  expect_near(s.positions[s.triangles[0].y], vec3(1, 2, 0));
+  expect_near(s.positions[s.triangles[0].z], vec3(1, 2, 2));
+  expect_near(s.positions[s.triangles[1].x], vec3(1, 0, 5));
+  EXPECT_EQ(s.bounds.lo.z, 0.0f);
+  EXPECT_EQ(s.bounds.hi.z, 6.0f);
+}
+
+TEST(GltfLoader, MirroredTransformFlipsWinding) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int m = b.triangle_mesh();
+  b.scene({b.node({{"mesh", m}}), b.node({{"mesh", m}, {"scale", {-1, 1, 1}}}), b.node({{"mesh", m}, {"scale", {1, 1, -1}}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 3u);
+  for (size_t t = 0; t < 3; ++t) {
+    vec3 shading = s.normals[s.triangles[t].x];
+    EXPECT_GT(glm::dot(geometric_normal(s, t), shading), 0.99f) << "triangle " << t;
+  }
+  expect_near(s.normals[s.triangles[1].x], vec3(0, 0, 1));   // x mirror keeps the normal
+  expect_near(s.normals[s.triangles[2].x], vec3(0, 0, -1));  // z mirror turns it around
+}
+
+TEST(GltfLoader, ReadsEightSixteenAndThirtyTwoBitIndices) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});
+  std::vector<int> nodes;
+  int i8 = b.indices(std::vector<uint8_t>{0, 1, 2, 0, 2, 3, 0, 0}, kByte);
+  int i16 = b.indices(std::vector<uint16_t>{0, 1, 2, 0, 2, 3}, kUShort);
+  int i32 = b.indices(std::vector<uint32_t>{0, 1, 2, 0, 2, 3}, kUInt);
+  b.doc["accessors"][i8]["count"] = 6;
+  for (int idx : {i8, i16, i32}) nodes.push_back(b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}}));
+  b.scene(nodes);
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 6u);
+  for (size_t t = 0; t < 6; t += 2) {
+    expect_near(s.positions[s.triangles[t].y], vec3(1, 0, 0));
+    expect_near(s.positions[s.triangles[t + 1].z], vec3(0, 1, 0));
+  }
+}
+
+TEST(GltfLoader, GeneratesFlatNormalsWhenNormalIsMissing) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  // Two triangles of a folded quad sharing an edge: flat shading needs six vertices.
+  int pos = b.vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 1});
+  int idx = b.indices(std::vector<uint16_t>{0, 1, 2, 1, 3, 2}, kUShort);
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}, {"indices", idx}})}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 2u);
+  EXPECT_EQ(s.positions.size(), 6u);
+  for (size_t t = 0; t < 2; ++t)
+    for (int k = 0; k < 3; ++k) expect_near(s.normals[s.triangles[t][k]], geometric_normal(s, t));
+  EXPECT_TRUE(has_warning(s, "flat normals"));
+}
+
+TEST(GltfLoader, ReplacesZeroNormalsAndDropsDegenerateTriangles) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0});
+  int nrm = b.vec3s({0, 0, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1});
+  int idx = b.indices(std::vector<uint16_t>{0, 1, 2, 0, 1, 3}, kUShort);  // second one is collinear
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", idx}})}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 1u);
+  expect_near(s.normals[s.triangles[0].x], vec3(0, 0, 1));
+  EXPECT_TRUE(has_warning(s, "dropped 1 zero-area triangles"));
+  EXPECT_TRUE(has_warning(s, "zero-length vertex normals"));
+}
+
+TEST(GltfLoader, KeepsTinyTriangles) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1e-13f, 0, 0, 0, 1e-13f, 0});  // |cross|^2 underflows in float
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}})}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 1u);
+  expect_near(s.normals[0], vec3(0, 0, 1));
+}
+
+TEST(GltfLoader, ConvertsStripsAndFans) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0});
+  int strip = b.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 5}});
+  int fan = b.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 6}});
+  int lines = b.mesh({{"attributes", {{"POSITION", pos}}}, {"mode", 1}});
+  b.scene({b.node({{"mesh", strip}}), b.node({{"mesh", fan}}), b.node({{"mesh", lines}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 4u);
+  // Strip (0,1,2), (2,1,3): both face +Z. Fan (1,2,0), (2,3,0): the second is (0,1,0),(1,1,0),(0,0,0) -> -Z.
+  EXPECT_GT(geometric_normal(s, 0).z, 0.99f);
+  EXPECT_GT(geometric_normal(s, 1).z, 0.99f);
+  EXPECT_GT(geometric_normal(s, 2).z, 0.99f);
+  EXPECT_LT(geometric_normal(s, 3).z, -0.99f);
+  EXPECT_TRUE(has_warning(s, "LINES primitives skipped"));
+}
+
+TEST(GltfLoader, ReadsInterleavedAttributesAndNormalizedUvs) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  std::vector<float> interleaved = {0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 1, 0, 0, 0, 1};
+  int v = b.view(interleaved, 24);
+  int pos = b.accessor(v, kFloat, 3, "VEC3");
+  int nrm = b.accessor(v, kFloat, 3, "VEC3", 12);
+  int uv = b.accessor(b.view(std::vector<uint16_t>{0, 0, 65535, 0, 0, 32768}), kUShort, 3, "VEC2", 0, true);
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}}})}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.triangles.size(), 1u);
+  expect_near(s.positions[s.triangles[0].y], vec3(1, 0, 0));
+  expect_near(s.normals[s.triangles[0].y], vec3(0, 0, 1));
+  EXPECT_NEAR(s.uvs[s.triangles[0].y].x, 1.0f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].z].y, 32768.0f / 65535.0f, 1e-6f);
+}
+
+TEST(GltfLoader, LoadsGlb) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  fs::path p = b.write_glb(dir, "scene");
+  Scene s = load_gltf(p.string());
+  EXPECT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.source, p.string());
+}
+
+TEST(GltfLoader, LoadsFromMemoryWithEmbeddedBuffer) {
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  json d = b.doc;
+  static const char* abc = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string b64;
+  for (size_t i = 0; i < b.bin.size(); i += 3) {
+    uint32_t n = uint32_t(uint8_t(b.bin[i])) << 16;
+    if (i + 1 < b.bin.size()) n |= uint32_t(uint8_t(b.bin[i + 1])) << 8;
+    if (i + 2 < b.bin.size()) n |= uint8_t(b.bin[i + 2]);
+    b64 += abc[(n >> 18) & 63];
+    b64 += abc[(n >> 12) & 63];
+    b64 += i + 1 < b.bin.size() ? abc[(n >> 6) & 63] : '=';
+    b64 += i + 2 < b.bin.size() ? abc[n & 63] : '=';
+  }
+  d["buffers"] = json::array({{{"uri", "data:application/octet-stream;base64," + b64}, {"byteLength", b.bin.size()}}});
+  Scene s = load_gltf_from_memory(d.dump(), "", "memory:test");
+  EXPECT_EQ(s.triangles.size(), 1u);
+  EXPECT_EQ(s.source, "memory:test");
+}
+
+// ---- materials and textures ----
+
+TEST(GltfLoader, MaterialFactorsEmissionAndDefaultMaterial) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int mat = b.material({{"name", "lamp"},
+                        {"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.25, 0.125, 0.5}}, {"metallicFactor", 0.0}, {"roughnessFactor", 0.5}}},
+                        {"emissiveFactor", {1.0, 0.5, 0.0}},
+                        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 10.0}}}}},
+                        {"doubleSided", true}});
+  b.doc["extensionsUsed"] = {"KHR_materials_emissive_strength"};
+  b.scene({b.node({{"mesh", b.triangle_mesh(mat)}}), b.node({{"mesh", b.triangle_mesh()}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.materials.size(), 2u);
+  const Material& m = s.materials[s.triangle_material[0]];
+  EXPECT_EQ(m.name, "lamp");
+  expect_near(m.base_color, vec3(0.5f, 0.25f, 0.125f));
+  EXPECT_EQ(m.metallic, 0.0f);
+  EXPECT_EQ(m.roughness, 0.5f);
+  expect_near(m.emission, vec3(10.0f, 5.0f, 0.0f));
+  EXPECT_TRUE(m.double_sided);
+  const Material& def = s.materials[s.triangle_material[1]];
+  expect_near(def.base_color, vec3(1.0f));
+  EXPECT_EQ(def.metallic, 1.0f);
+  EXPECT_EQ(def.roughness, 1.0f);
+  EXPECT_FALSE(has_warning(s, "no lights"));
+}
+
+TEST(GltfLoader, DecodesSrgbAndLinearTexturesWithSamplerModes) {
+  fs::path dir = test::temp_dir();
+  write_png(dir / "tex.png", 2, 1, 8, 2, {0, 128, 255, 255, 10, 0});
+  GltfBuilder b;
+  b.doc["images"] = json::array({{{"uri", "tex.png"}}});
+  b.doc["samplers"] = json::array({{{"wrapS", 33071}, {"wrapT", 33648}, {"magFilter", 9728}}});
+  b.doc["textures"] = json::array({{{"source", 0}, {"sampler", 0}}, {{"source", 0}}});
+  int mat = b.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicRoughnessTexture", {{"index", 0}}}}},
+                        {"emissiveTexture", {{"index", 1}}}});
+  b.scene({b.node({{"mesh", b.triangle_mesh(mat)}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  const Material& m = s.materials[0];
+  ASSERT_EQ(s.textures.size(), 3u);  // (image, sRGB, sampler 0), (image, linear, sampler 0), (image, sRGB, none)
+  const Texture& srgb = s.textures[m.base_color_texture];
+  const Texture& linear = s.textures[m.metallic_roughness_texture];
+  const Texture& repeat = s.textures[m.emissive_texture];
+  ASSERT_EQ(srgb.width, 2);
+  ASSERT_EQ(srgb.height, 1);
+  auto exact_srgb = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
+  EXPECT_EQ(srgb.texels[0].x, 0.0f);
+  EXPECT_NEAR(srgb.texels[0].y, exact_srgb(128.0f / 255.0f), 1e-6f);
+  EXPECT_NEAR(srgb.texels[0].y, 0.2158605f, 1e-6f);
+  EXPECT_NEAR(srgb.texels[1].y, 10.0f / 255.0f / 12.92f, 1e-7f);  // the linear segment
+  EXPECT_EQ(srgb.texels[0].z, 1.0f);
+  EXPECT_EQ(srgb.texels[0].w, 1.0f);
+  EXPECT_NEAR(linear.texels[0].y, 128.0f / 255.0f, 1e-6f);
+  EXPECT_EQ(srgb.wrap_s, Wrap::ClampToEdge);
+  EXPECT_EQ(srgb.wrap_t, Wrap::MirroredRepeat);
+  EXPECT_TRUE(srgb.nearest);
+  EXPECT_EQ(repeat.wrap_s, Wrap::Repeat);
+  EXPECT_EQ(repeat.wrap_t, Wrap::Repeat);
+  EXPECT_FALSE(repeat.nearest);
+}
+
+TEST(GltfLoader, ExpandsGreyAlphaTexturesToRgba) {
+  fs::path dir = test::temp_dir();
+  write_png(dir / "grey.png", 2, 1, 8, 4, {255, 51, 0, 255});
+  GltfBuilder b = textured_triangle("grey.png");
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.textures.size(), 1u);
+  EXPECT_EQ(s.textures[0].texels[0], vec4(1.0f, 1.0f, 1.0f, 0.2f));  // alpha stays linear
+  EXPECT_EQ(s.textures[0].texels[1], vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  EXPECT_TRUE(has_warning(s, "texCoord"));
+}
+
+TEST(GltfLoader, DecodesSixteenBitTextures) {
+  fs::path dir = test::temp_dir();
+  write_png(dir / "deep.png", 2, 1, 16, 0, {0x80, 0x00, 0xFF, 0xFF});
+  Scene s = load_gltf(textured_triangle("deep.png").write(dir, "scene").string());
+  ASSERT_EQ(s.textures.size(), 1u);
+  float c = 32768.0f / 65535.0f;
+  EXPECT_NEAR(s.textures[0].texels[0].x, std::pow((c + 0.055f) / 1.055f, 2.4f), 1e-6f);
+  EXPECT_EQ(s.textures[0].texels[1], vec4(1.0f));
+}
+
+TEST(GltfLoader, ImagesOtherThanPngOrJpegAreAnError) {
+  fs::path dir = test::temp_dir();
+  std::ofstream(dir / "tex.ppm", std::ios::binary) << "P6\n1 1\n255\nabc";
+  fs::path p = textured_triangle("tex.ppm").write(dir, "scene");
+  expect_one_line_naming(load_error(p), p, "'tex.ppm' is neither PNG nor JPEG");
+}
+
+TEST(GltfLoader, TextureTransformIsIgnoredWhenUsedAndRefusedWhenRequired) {
+  fs::path dir = test::temp_dir();
+  write_png(dir / "tex.png", 1, 1, 8, 2, {1, 2, 3});
+  GltfBuilder b = textured_triangle("tex.png");
+  b.doc["extensionsUsed"] = {"KHR_texture_transform"};
+  auto& info = b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"];
+  info["extensions"]["KHR_texture_transform"] = {{"scale", {1.0, 1.0}}};
+  Scene identity = load_gltf(b.write(dir, "identity").string());
+  EXPECT_FALSE(has_warning(identity, "KHR_texture_transform"));
+  info["extensions"]["KHR_texture_transform"] = {{"scale", {2.0, 2.0}}};
+  Scene scaled = load_gltf(b.write(dir, "scaled").string());
+  EXPECT_TRUE(has_warning(scaled, "KHR_texture_transform ignored"));
+  b.doc["extensionsRequired"] = {"KHR_texture_transform"};
+  fs::path p = b.write(dir, "required");
+  expect_one_line_naming(load_error(p), p, "KHR_texture_transform, which is required but not implemented");
+}
+
+TEST(GltfLoader, AlphaNormalAndOcclusionAreIgnoredWithWarnings) {
+  fs::path dir = test::temp_dir();
+  write_png(dir / "tex.png", 1, 1, 8, 2, {1, 2, 3});
+  GltfBuilder b = textured_triangle("tex.png");
+  b.doc["materials"][0]["alphaMode"] = "BLEND";
+  b.doc["materials"][0]["normalTexture"] = {{"index", 0}};
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  EXPECT_TRUE(has_warning(s, "alpha modes other than OPAQUE are ignored"));
+  EXPECT_TRUE(has_warning(s, "normal and occlusion textures are ignored"));
+  EXPECT_EQ(s.textures.size(), 1u);  // the normal map is not decoded
+}
+
+// ---- lights and cameras ----
+
+TEST(GltfLoader, PunctualLightsFromNodes) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  b.doc["extensions"]["KHR_lights_punctual"]["lights"] = json::array(
+      {{{"name", "bulb"}, {"type", "point"}, {"color", {1.0, 0.5, 0.25}}, {"intensity", 4.0}, {"range", 10.0}},
+       {{"name", "cone"}, {"type", "spot"}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.5}}}},
+       {{"type", "spot"}, {"spot", json::object()}},
+       {{"name", "sun"}, {"type", "directional"}, {"intensity", 3.0}}});
+  const float s = std::sqrt(0.5f);
+  auto light = [](int i) { return json{{"KHR_lights_punctual", {{"light", i}}}}; };
+  b.scene({b.node({{"mesh", b.triangle_mesh()}}),
+           b.node({{"translation", {1, 2, 3}}, {"extensions", light(0)}}),
+           b.node({{"translation", {0, 5, 0}}, {"extensions", light(1)}}),
+           b.node({{"name", "default-cone"}, {"extensions", light(2)}}),
+           b.node({{"rotation", {s, 0, 0, s}}, {"extensions", light(3)}})});  // 90 deg about X
+  Scene sc = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(sc.lights.size(), 4u);
+  const PunctualLight& bulb = sc.lights[0];
+  EXPECT_EQ(bulb.type, LightType::Point);
+  expect_near(bulb.position, vec3(1, 2, 3));
+  expect_near(bulb.intensity, vec3(4.0f, 2.0f, 1.0f));
+  EXPECT_TRUE(has_warning(sc, "range ignored"));
+  const PunctualLight& cone = sc.lights[1];
+  EXPECT_EQ(cone.type, LightType::Spot);
+  EXPECT_NEAR(cone.cos_inner, std::cos(0.2f), 1e-6f);
+  EXPECT_NEAR(cone.cos_outer, std::cos(0.5f), 1e-6f);
+  expect_near(cone.direction, vec3(0, 0, -1));
+  EXPECT_EQ(sc.lights[2].name, "default-cone");
+  EXPECT_NEAR(sc.lights[2].cos_inner, 1.0f, 1e-6f);
+  EXPECT_NEAR(sc.lights[2].cos_outer, std::cos(kPi / 4), 1e-6f);
+  const PunctualLight& sun = sc.lights[3];
+  EXPECT_EQ(sun.type, LightType::Directional);
+  expect_near(sun.direction, vec3(0, 1, 0));  // -Z turned 90 deg about X points up
+  expect_near(sun.intensity, vec3(3.0f));
+}
+
+TEST(GltfLoader, CameraFromNode) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  b.doc["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.7}, {"aspectRatio", 1.5}, {"znear", 0.1}}}},
+                                  {{"type", "perspective"}, {"perspective", {{"yfov", 0.5}, {"znear", 0.1}}}},
+                                  {{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"znear", 0}, {"zfar", 1}}}}});
+  const float s = std::sqrt(0.5f);
+  b.scene({b.node({{"mesh", b.triangle_mesh()}}),
+           b.node({{"name", "side"}, {"camera", 0}, {"translation", {0, 1, 5}}, {"rotation", {0, s, 0, s}}}),  // 90 deg about Y
+           b.node({{"name", "plain"}, {"camera", 1}}),
+           b.node({{"name", "ortho"}, {"camera", 2}})});
+  Scene sc = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(sc.cameras.size(), 2u);
+  const Camera& c = sc.cameras[0];
+  EXPECT_EQ(c.name, "side");
+  expect_near(c.eye, vec3(0, 1, 5));
+  expect_near(c.forward, vec3(-1, 0, 0));
+  expect_near(c.up, vec3(0, 1, 0));
+  EXPECT_NEAR(c.yfov, 0.7f, 1e-6f);
+  EXPECT_NEAR(c.aspect, 1.5f, 1e-6f);
+  EXPECT_EQ(sc.cameras[1].name, "plain");
+  EXPECT_EQ(sc.cameras[1].aspect, 0.0f);
+  EXPECT_TRUE(has_warning(sc, "orthographic"));
+}
+
+TEST(GltfLoader, AutoCameraFramesTheBoundsAndNoLightsIsAWarning) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  int pos = b.vec3s({-1, -2, -3, 4, -2, -3, -1, 5, 6});
+  b.scene({b.node({{"mesh", b.mesh({{"attributes", {{"POSITION", pos}}}})}})});
+  Scene s = load_gltf(b.write(dir, "scene").string());
+  ASSERT_EQ(s.cameras.size(), 1u);
+  const Camera& c = s.cameras[0];
+  EXPECT_EQ(c.name, "auto");
+  expect_near(c.forward, vec3(0, 0, -1));
+  expect_near(c.up, vec3(0, 1, 0));
+  EXPECT_NEAR(c.yfov, 0.8f, 1e-6f);
+  EXPECT_GT(c.eye.z, s.bounds.hi.z);
+  // Every corner of the box lies inside the vertical and (square) horizontal field of view.
+  float t = std::tan(0.5f * c.yfov);
+  for (int i = 0; i < 8; ++i) {
+    vec3 corner((i & 1) ? s.bounds.hi.x : s.bounds.lo.x, (i & 2) ? s.bounds.hi.y : s.bounds.lo.y,
+                (i & 4) ? s.bounds.hi.z : s.bounds.lo.z);
+    vec3 d = corner - c.eye;
+    float depth = -d.z;
+    ASSERT_GT(depth, 0.0f);
+    EXPECT_LE(std::abs(d.y) / depth, t);
+    EXPECT_LE(std::abs(d.x) / depth, t);
+  }
+  EXPECT_TRUE(has_warning(s, "auto"));
+  EXPECT_TRUE(has_warning(s, "scene has no lights: the image will be black"));
+}
+
+// ---- the shared scenes, when present beside the checkout ----
+
+void expect_shared_scene_loads(const std::string& name) {
+  fs::path gltf = test::shared_scene(name + "/" + name + ".gltf");
+  fs::path manifest = test::shared_scene("MANIFEST.json");
+  if (gltf.empty() || manifest.empty()) GTEST_SKIP() << "shared scenes not present";
+  size_t expected = json::parse(std::ifstream(manifest))["scenes"][name]["triangles"].get<size_t>();
+  auto start = std::chrono::steady_clock::now();
+  Scene s = load_gltf(gltf.string());
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ timing   ] %s: %zu triangles, %zu textures, loaded in %.3f s\n", name.c_str(), s.triangles.size(),
+              s.textures.size(), seconds);
+  // MANIFEST counts the file's triangles; the loader drops the zero-area ones and says how many.
+  size_t dropped = 0;
+  for (const std::string& w : s.warnings) std::sscanf(w.c_str(), "dropped %zu zero-area triangles", &dropped);
+  EXPECT_EQ(s.triangles.size() + dropped, expected);
+  EXPECT_LT(dropped, expected / 20);
+  ASSERT_FALSE(s.cameras.empty());
+  EXPECT_EQ(s.cameras[0].name, "main");
+  for (const std::string& w : s.warnings) std::printf("[ warning  ] %s\n", w.c_str());
+}
+
+TEST(GltfLoader, SharedStaircaseLoads) { expect_shared_scene_loads("staircase"); }
+TEST(GltfLoader, SharedBreakfastRoomLoads) { expect_shared_scene_loads("breakfast-room"); }
+TEST(GltfLoader, SharedLivingRoomLoads) { expect_shared_scene_loads("living-room-2"); }
+
+TEST(GltfLoader, SharedCornellPointVariantHasItsPointLight) {
+  fs::path gltf = test::shared_scene("cornell-box/cornell-box-point.gltf");
+  if (gltf.empty()) GTEST_SKIP() << "shared scenes not present";
+  Scene s = load_gltf(gltf.string());
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, LightType::Point);
+  expect_near(s.lights[0].position, vec3(0.0f, 1.4f, 0.3f));
+  expect_near(s.lights[0].intensity, vec3(2.0f));
+}
+
+}  // namespace
+}  // namespace sst

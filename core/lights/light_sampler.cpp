@@ -64,9 +64,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(&scene) {
   distribution_ = DiscreteDistribution(weights);
 }
 
-bool LightSampler::sample(vec3 p, float u_pick, float u1, float u2, LightSample& out) const {
+bool LightSampler::sample(vec3 p, vec2 u, LightSample& out) const {
   if (empty()) return false;
-  uint32_t index = distribution_.sample(u_pick);
+  float u1 = 0.0f, u2 = u.y;
+  uint32_t index = distribution_.sample(u.x, &u1);
   float pick = distribution_.pmf(index);
   if (index < scene_->lights.size()) {
     const PunctualLight& light = scene_->lights[index];

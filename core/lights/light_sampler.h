@@ -33,9 +33,9 @@ class LightSampler {
   size_t light_count() const { return distribution_.size(); }
   size_t emissive_triangle_count() const { return emissive_triangles_.size(); }
 
-  // Samples a light for shading point p with 3 random numbers. Returns false when no light can
-  // contribute (no lights, or the sampled point is degenerate).
-  bool sample(vec3 p, float u_pick, float u1, float u2, LightSample& out) const;
+  // Samples a light for shading point p with one 2D sample (u.x picks the light and is reused,
+  // remapped, for the point on it). Returns false when no light can contribute.
+  bool sample(vec3 p, vec2 u, LightSample& out) const;
   // Solid-angle pdf that `sample` would pick the point y on emissive triangle `tri` from p
   // (0 for a triangle that is not a light).
   float pdf_emissive_hit(vec3 p, uint32_t tri, vec3 y, vec3 ng_light) const;

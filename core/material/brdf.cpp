@@ -1,5 +1,6 @@
 #include "core/material/brdf.h"
 
+#include "core/rng/sobol_sampler.h"
 #include "core/sampling/sampling.h"
 
 namespace sst {
@@ -98,15 +99,15 @@ float Brdf::pdf(vec3 wo, vec3 wi) const {
   return pdf;
 }
 
-bool Brdf::sample(vec3 wo, float u_lobe, float u1, float u2, BrdfSample& out) const {
+bool Brdf::sample(vec3 wo, vec2 u, BrdfSample& out) const {
   if (wo.z <= 0.0f) return false;
   float ps = std::min(specular_probability(wo), 1.0f);
   vec3 wi;
-  if (u_lobe < ps) {
-    vec3 h = sample_ggx_vndf(wo, alpha, u1, u2);
+  if (u.x < ps) {
+    vec3 h = sample_ggx_vndf(wo, alpha, remap_below(u.x, ps), u.y);
     wi = glm::reflect(-wo, h);
   } else {
-    wi = sample_cosine_hemisphere(u1, u2);
+    wi = sample_cosine_hemisphere(ps > 0.0f ? remap_above(u.x, ps) : u.x, u.y);
   }
   if (wi.z <= 0.0f) return false;
   out.wi = wi;

@@ -25,7 +25,8 @@ struct Brdf {
   vec3 eval(vec3 wo, vec3 wi) const;  // f(wo, wi), without the cosine
   float pdf(vec3 wo, vec3 wi) const;
   // Returns false when no direction could be drawn (e.g. wo below the surface).
-  bool sample(vec3 wo, float u_lobe, float u1, float u2, BrdfSample& out) const;
+  // u.x chooses the lobe and is reused, remapped, for the direction.
+  bool sample(vec3 wo, vec2 u, BrdfSample& out) const;
   // The probability of choosing the specular lobe when sampling.
   float specular_probability(vec3 wo) const;
 };

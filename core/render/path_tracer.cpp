@@ -9,10 +9,9 @@ namespace {
 
 // Next-event estimation at surface s: one light sample, one shadow ray, MIS-weighted.
 vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf, const Frame& frame, vec3 wo,
-                   HashRng& rng, RayCounters& counters) {
-  float u_pick = rng.next(), u1 = rng.next(), u2 = rng.next();
+                   vec2 u, RayCounters& counters) {
   LightSample ls;
-  if (!ctx.lights.sample(s.p, u_pick, u1, u2, ls)) return vec3(0.0f);
+  if (!ctx.lights.sample(s.p, u, ls)) return vec3(0.0f);
   // Light from behind the geometric surface would leak through it: nothing is transmitted.
   if (glm::dot(ls.wi, s.ng) <= 0.0f) return vec3(0.0f);
   vec3 wi = frame.to_local(ls.wi);
@@ -33,7 +32,7 @@ vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf,
 
 }  // namespace
 
-PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, Ray ray, HashRng& rng,
+PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
                       RayCounters& counters) {
   PathSample out;
   ++counters.primary_rays;
@@ -55,11 +54,14 @@ PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, 
     vec3 wo = frame.to_local(-glm::normalize(ray.direction));
     if (wo.z <= 0.0f) break;  // grazing view under the shading normal: no reflection defined
 
-    target += beta * sample_direct(ctx, s, brdf, frame, wo, rng, counters);
+    // Every vertex draws its samples in the same order (light, BRDF, roulette), so sample set
+    // numbers line up across paths and the sets stay stratified per vertex.
+    vec2 u_light = sampler.get2d(), u_brdf = sampler.get2d();
+    float u_roulette = sampler.get1d();
+    target += beta * sample_direct(ctx, s, brdf, frame, wo, u_light, counters);
 
-    float u_lobe = rng.next(), u1 = rng.next(), u2 = rng.next();
     BrdfSample bs;
-    if (!brdf.sample(wo, u_lobe, u1, u2, bs)) break;
+    if (!brdf.sample(wo, u_brdf, bs)) break;
     vec3 wi = frame.to_world(bs.wi);
     if (glm::dot(wi, s.ng) <= 0.0f) break;  // would pass through the surface
 
@@ -82,7 +84,7 @@ PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, 
     // Russian roulette after rr_min_bounces indirect bounces; k-1 have been made to reach s.
     if (k >= params.rr_min_bounces + 1 && k <= params.max_bounces) {
       float survive = std::min(1.0f, max_component(beta));
-      if (rng.next() >= survive) break;
+      if (u_roulette >= survive) break;
       beta /= survive;
     }
   }
@@ -107,9 +109,9 @@ FrameOutput PathTracer::render(const RenderContext& ctx, StageTimer& timer) {
       uint32_t pixel = uint32_t(y) * uint32_t(ctx.width) + uint32_t(x);
       PathSample sum;
       for (int i = 0; i < spp; ++i) {
-        HashRng rng(ctx.options.seed, pixel, uint32_t(i));
-        float jx = rng.next(), jy = rng.next();
-        PathSample p = trace_path(ctx, params_, ctx.camera.generate(float(x) + jx, float(y) + jy), rng, counters);
+        PixelSampler sampler(ctx.options.seed, pixel, uint32_t(i));
+        vec2 jitter = sampler.get2d();
+        PathSample p = trace_path(ctx, params_, ctx.camera.generate(float(x) + jitter.x, float(y) + jitter.y), sampler, counters);
         ++counters.samples;
         // A NaN or Inf sample is a bug to find, not a pixel to show: drop and count it.
         if (!is_finite(p.direct) || !is_finite(p.indirect)) {

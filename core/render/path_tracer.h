@@ -8,7 +8,7 @@
 // | rr_min_bounces   | 3       | bounces before Russian roulette starts (never, if >= max_bounces) |
 #pragma once
 #include "core/render/method.h"
-#include "core/rng/hash_rng.h"
+#include "core/rng/sobol_sampler.h"
 #include "core/util/params.h"
 
 namespace sst {
@@ -33,7 +33,7 @@ struct PathSample {
   float depth = 0.0f;
 };
 
-PathSample trace_path(const RenderContext& context, const PathTracerParams& params, Ray ray, HashRng& rng,
+PathSample trace_path(const RenderContext& context, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
                       RayCounters& counters);
 
 class PathTracer final : public Method {

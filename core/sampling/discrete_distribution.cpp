@@ -24,12 +24,16 @@ DiscreteDistribution::DiscreteDistribution(const std::vector<double>& weights) {
   cdf_.back() = 1.0;
 }
 
-uint32_t DiscreteDistribution::sample(float u) const {
+uint32_t DiscreteDistribution::sample(float u, float* u_remapped) const {
   // First index whose cdf exceeds u: skips zero-weight entries, whose cdf equals their
   // predecessor's.
   auto it = std::upper_bound(cdf_.begin(), cdf_.end(), double(u));
   size_t i = std::min<size_t>(size_t(it - cdf_.begin()), cdf_.size() - 1);
   while (i > 0 && pmf_[i] == 0.0f) --i;  // u rounding onto a trailing zero-weight entry
+  if (u_remapped) {
+    double lo = i ? cdf_[i - 1] : 0.0, width = cdf_[i] - lo;
+    *u_remapped = width > 0.0 ? float(std::clamp((double(u) - lo) / width, 0.0, 0.99999994)) : 0.0f;
+  }
   return uint32_t(i);
 }
 

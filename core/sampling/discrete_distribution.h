@@ -15,8 +15,10 @@ class DiscreteDistribution {
 
   bool empty() const { return total_ <= 0.0; }
   size_t size() const { return pmf_.size(); }
-  // Index for u in [0,1); only indices with non-zero weight are ever returned.
-  uint32_t sample(float u) const;
+  // Index for u in [0,1); only indices with non-zero weight are ever returned. When
+  // `u_remapped` is given it receives u's position within the chosen index's share of [0,1),
+  // itself uniform, so a stratified u keeps stratifying what is sampled next.
+  uint32_t sample(float u, float* u_remapped = nullptr) const;
   float pmf(uint32_t i) const { return i < pmf_.size() ? pmf_[i] : 0.0f; }
   double total() const { return total_; }
 

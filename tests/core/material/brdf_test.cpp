@@ -51,7 +51,7 @@ TEST(Brdf, SampleWeightEqualsEvalCosOverPdf) {
       HashRng rng(1, 2, 3);
       for (int i = 0; i < 2000; ++i) {
         BrdfSample s;
-        if (!b.sample(wo, rng.next(), rng.next(), rng.next(), s)) continue;
+        if (!b.sample(wo, vec2(rng.next(), rng.next()), s)) continue;
         ASSERT_GT(s.wi.z, 0.0f);
         vec3 expected = b.eval(wo, s.wi) * s.wi.z / b.pdf(wo, s.wi);
         ASSERT_NEAR(s.weight.x, expected.x, 1e-4f * std::max(1.0f, expected.x));
@@ -70,7 +70,7 @@ TEST(Brdf, SampledDirectionsFollowThePdf) {
   const int n = 400000;
   for (int i = 0; i < n; ++i) {
     BrdfSample s;
-    if (!b.sample(wo, rng.next(), rng.next(), rng.next(), s)) continue;
+    if (!b.sample(wo, vec2(rng.next(), rng.next()), s)) continue;
     sum += (s.wi.z / kPi) / s.pdf;
   }
   EXPECT_NEAR(sum / n, 1.0, 0.01);
@@ -89,7 +89,7 @@ TEST(Brdf, GlossyAlbedoAgreesBetweenEstimatorsAndStaysBelowOne) {
     const int n = 400000;
     for (int i = 0; i < n; ++i) {
       BrdfSample s;
-      if (metal.sample(wo, rng.next(), rng.next(), rng.next(), s)) sampled += s.weight.x;
+      if (metal.sample(wo, vec2(rng.next(), rng.next()), s)) sampled += s.weight.x;
     }
     sampled /= n;
     EXPECT_NEAR(cosine.albedo.x, sampled, 0.02 * sampled) << roughness;

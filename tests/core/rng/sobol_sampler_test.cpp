@@ -1,0 +1,59 @@
+#include "core/rng/sobol_sampler.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace sst {
+namespace {
+
+// For a (0,2)-sequence in base 2, the first 2^k points put exactly one point in every
+// elementary interval of area 2^-k (2^a columns x 2^(k-a) rows); Owen scrambling keeps that.
+TEST(SobolSampler, EveryPowerOfTwoPrefixIsStratified) {
+  const int k = 8, n = 1 << k;
+  for (uint32_t pixel : {0u, 17u, 123456u})
+    for (int set = 0; set < 3; ++set) {
+      std::vector<vec2> points;
+      for (int i = 0; i < n; ++i) {
+        PixelSampler s(42, pixel, uint32_t(i));
+        for (int skip = 0; skip < set; ++skip) s.get2d();
+        points.push_back(s.get2d());
+      }
+      for (int a = 0; a <= k; ++a) {
+        int columns = 1 << a, rows = 1 << (k - a);
+        std::set<int> cells;
+        for (vec2 p : points) cells.insert(int(p.x * columns) * rows + int(p.y * rows));
+        EXPECT_EQ(int(cells.size()), n) << "pixel " << pixel << " set " << set << " grid " << columns << "x" << rows;
+      }
+    }
+}
+
+TEST(SobolSampler, PixelsAndSetsAreDecorrelated) {
+  std::set<uint32_t> first_points;
+  for (uint32_t pixel = 0; pixel < 1024; ++pixel) first_points.insert(uint32_t(PixelSampler(1, pixel, 0).get2d().x * 1e6f));
+  EXPECT_GT(first_points.size(), 1000u);
+  PixelSampler s(1, 5, 0);
+  vec2 a = s.get2d(), b = s.get2d();
+  EXPECT_NE(a, b);
+  EXPECT_EQ(s.sets_used(), 2u);
+}
+
+TEST(SobolSampler, MeanOverManyPixelsIsUniform) {
+  double sum = 0.0;
+  const int pixels = 4096;
+  for (int p = 0; p < pixels; ++p) {
+    PixelSampler s(3, uint32_t(p), 7);
+    s.get2d();
+    sum += s.get2d().y;
+  }
+  EXPECT_NEAR(sum / pixels, 0.5, 6.0 * std::sqrt(1.0 / 12.0 / pixels));
+}
+
+TEST(SobolSampler, RemapKeepsTheUnitInterval) {
+  EXPECT_FLOAT_EQ(remap_below(0.25f, 0.5f), 0.5f);
+  EXPECT_FLOAT_EQ(remap_above(0.75f, 0.5f), 0.5f);
+  EXPECT_LT(remap_below(0.49999997f, 0.5f), 1.0f);
+}
+
+}  // namespace
+}  // namespace sst

@@ -10,7 +10,8 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) {
   if (!device_) throw Error("could not create an Embree device");
   scene_ = rtcNewScene(device_);
   rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  // Not RTC_SCENE_FLAG_ROBUST: it cost 15% of path-tracing time on the staircase and changed
+  // no figure of the Cornell-box reference check (mean and RMSE identical to 5 digits).
 
   RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
   // Embree reads vertices with 16-byte loads, so the buffer it allocates has the padding it needs.

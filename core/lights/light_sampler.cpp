@@ -7,10 +7,10 @@ namespace sst {
 namespace {
 // Luminance of a texture's mean, so a textured emitter's power estimate reflects its pattern.
 float mean_luminance(const Texture& t) {
-  if (t.texels.empty()) return 1.0f;
+  if (t.texel_count() == 0) return 1.0f;
   double sum = 0.0;
-  for (const vec4& c : t.texels) sum += luminance(vec3(c));
-  return float(sum / double(t.texels.size()));
+  for (size_t i = 0; i < t.texel_count(); ++i) sum += luminance(vec3(t.texel(i)));
+  return float(sum / double(t.texel_count()));
 }
 
 double punctual_power(const PunctualLight& light, const Bounds3& bounds) {

@@ -51,12 +51,14 @@ inline uint32_t sobol_dimension1(uint32_t index) {
 class PixelSampler {
  public:
   PixelSampler(uint32_t seed, uint32_t pixel, uint32_t sample_index)
-      : key_(pcg_hash(seed ^ pcg_hash(pixel ^ 0x2545F491u))), index_(sample_index) {}
+      : key_(pcg_hash(seed ^ pcg_hash(pixel ^ 0x2545F491u))), reversed_index_(reverse_bits(sample_index)) {}
 
+  // Equal to nested_uniform_scramble of the Sobol values of the scrambled index; written with
+  // reverse_bits(reverse_bits(x)) = x folded away, since this runs a dozen times per path.
   vec2 get2d() {
     uint32_t set_seed = pcg_hash(key_ ^ pcg_hash(++set_));
-    uint32_t i = nested_uniform_scramble(index_, set_seed);
-    uint32_t x = nested_uniform_scramble(sobol_dimension0(i), pcg_hash(set_seed ^ 0xA511E9B3u));
+    uint32_t i = reverse_bits(laine_karras_permutation(reversed_index_, set_seed));
+    uint32_t x = reverse_bits(laine_karras_permutation(i, pcg_hash(set_seed ^ 0xA511E9B3u)));
     uint32_t y = nested_uniform_scramble(sobol_dimension1(i), pcg_hash(set_seed ^ 0x63D83595u));
     return {bits_to_unit_float(x), bits_to_unit_float(y)};
   }
@@ -65,7 +67,7 @@ class PixelSampler {
 
  private:
   uint32_t key_;
-  uint32_t index_;
+  uint32_t reversed_index_;
   uint32_t set_ = 0;
 };
 

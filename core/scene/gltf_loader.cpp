@@ -1,5 +1,7 @@
 #include "core/scene/gltf_loader.h"
 
+#include "core/image/image.h"
+
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
@@ -143,20 +145,6 @@ bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::st
   return true;
 }
 
-// The exact piecewise sRGB curve (IEC 61966-2-1), not a gamma approximation.
-float srgb_to_linear(float c) {
-  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
-}
-
-const std::array<float, 256>& srgb_table_8bit() {
-  static const std::array<float, 256> table = [] {
-    std::array<float, 256> t{};
-    for (int i = 0; i < 256; ++i) t[i] = srgb_to_linear(float(i) / 255.0f);
-    return t;
-  }();
-  return table;
-}
-
 Wrap wrap_mode(int gl_wrap, Warnings& warnings) {
   switch (gl_wrap) {
     case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::ClampToEdge;
@@ -174,37 +162,49 @@ bool valid_decoded(const tinygltf::Image& img) {
   return img.image.size() >= size_t(img.width) * size_t(img.height) * size_t(img.component) * size_t(img.bits / 8);
 }
 
-// An 8- or 16-bit image with 1-4 channels -> linear float RGBA (grey expands to RGB, missing
-// alpha is 1). Colour textures are sRGB-decoded; alpha never is.
+// An 8- or 16-bit image with 1-4 channels -> RGBA (grey expands to RGB, missing alpha is 1).
+// 8-bit images stay 8-bit, sRGB-encoded if colour (decoded per fetch); 16-bit ones become
+// linear floats. Colour textures are sRGB; alpha never is.
 Texture to_texture(const tinygltf::Image& img, bool srgb) {
   Texture t;
   t.width = img.width;
   t.height = img.height;
   size_t texels = size_t(img.width) * size_t(img.height);
   int channels = img.component;
-  int bytes_per = img.bits == 16 ? 2 : 1;
-  t.texels.resize(texels);
-  const auto& table = srgb_table_8bit();
-  auto channel = [&](size_t i, int c) -> float {
-    const unsigned char* p = img.image.data() + (i * channels + c) * bytes_per;
-    if (bytes_per == 1) return srgb && c < 3 ? table[*p] : float(*p) / 255.0f;
-    uint16_t v;
-    std::memcpy(&v, p, 2);
-    float f = float(v) / 65535.0f;
-    return srgb && c < 3 ? srgb_to_linear(f) : f;
-  };
-  for (size_t i = 0; i < texels; ++i) {
-    vec4 v(0.0f, 0.0f, 0.0f, 1.0f);
+  auto expand = [channels](auto channel, auto one) {
+    using T = decltype(one);
+    std::array<T, 4> v{T(0), T(0), T(0), one};
     if (channels <= 2) {
-      v.x = v.y = v.z = channel(i, 0);
-      if (channels == 2) v.w = channel(i, 1);
+      v[0] = v[1] = v[2] = channel(0);
+      if (channels == 2) v[3] = channel(1);
     } else {
-      v.x = channel(i, 0);
-      v.y = channel(i, 1);
-      v.z = channel(i, 2);
-      if (channels == 4) v.w = channel(i, 3);
+      for (int c = 0; c < 3; ++c) v[c] = channel(c);
+      if (channels == 4) v[3] = channel(3);
     }
-    t.texels[i] = v;
+    return v;
+  };
+  if (img.bits == 8) {
+    t.srgb = srgb;
+    t.rgba8.resize(texels);
+    for (size_t i = 0; i < texels; ++i) {
+      const unsigned char* p = img.image.data() + i * channels;
+      auto v = expand([p](int c) { return uint32_t(p[c]); }, uint32_t(255));
+      t.rgba8[i] = v[0] | (v[1] << 8) | (v[2] << 16) | (v[3] << 24);
+    }
+    return t;
+  }
+  t.texels.resize(texels);
+  for (size_t i = 0; i < texels; ++i) {
+    const unsigned char* p = img.image.data() + i * channels * 2;
+    auto v = expand(
+        [p, srgb](int c) {
+          uint16_t raw;
+          std::memcpy(&raw, p + 2 * c, 2);
+          float f = float(raw) / 65535.0f;
+          return srgb && c < 3 ? srgb_decode(f) : f;
+        },
+        1.0f);
+    t.texels[i] = vec4(v[0], v[1], v[2], v[3]);
   }
   return t;
 }

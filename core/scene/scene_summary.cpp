@@ -20,7 +20,8 @@ bool is_glossy(const Scene& scene, const Material& m) {
   float max_metallic = m.metallic, min_roughness = m.roughness;
   if (const Texture* t = texture_at(scene, m.metallic_roughness_texture)) {
     float max_b = 0.0f, min_g = 1.0f;
-    for (const vec4& texel : t->texels) {
+    for (size_t i = 0; i < t->texel_count(); ++i) {
+      vec4 texel = t->texel(i);
       max_b = std::max(max_b, texel.z);
       min_g = std::min(min_g, texel.y);
     }

@@ -509,13 +509,13 @@ TEST(GltfLoader, DecodesSrgbAndLinearTexturesWithSamplerModes) {
   ASSERT_EQ(srgb.width, 2);
   ASSERT_EQ(srgb.height, 1);
   auto exact_srgb = [](float c) { return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f); };
-  EXPECT_EQ(srgb.texels[0].x, 0.0f);
-  EXPECT_NEAR(srgb.texels[0].y, exact_srgb(128.0f / 255.0f), 1e-6f);
-  EXPECT_NEAR(srgb.texels[0].y, 0.2158605f, 1e-6f);
-  EXPECT_NEAR(srgb.texels[1].y, 10.0f / 255.0f / 12.92f, 1e-7f);  // the linear segment
-  EXPECT_EQ(srgb.texels[0].z, 1.0f);
-  EXPECT_EQ(srgb.texels[0].w, 1.0f);
-  EXPECT_NEAR(linear.texels[0].y, 128.0f / 255.0f, 1e-6f);
+  EXPECT_EQ(srgb.texel(0).x, 0.0f);
+  EXPECT_NEAR(srgb.texel(0).y, exact_srgb(128.0f / 255.0f), 1e-6f);
+  EXPECT_NEAR(srgb.texel(0).y, 0.2158605f, 1e-6f);
+  EXPECT_NEAR(srgb.texel(1).y, 10.0f / 255.0f / 12.92f, 1e-7f);  // the linear segment
+  EXPECT_EQ(srgb.texel(0).z, 1.0f);
+  EXPECT_EQ(srgb.texel(0).w, 1.0f);
+  EXPECT_NEAR(linear.texel(0).y, 128.0f / 255.0f, 1e-6f);
   EXPECT_EQ(srgb.wrap_s, Wrap::ClampToEdge);
   EXPECT_EQ(srgb.wrap_t, Wrap::MirroredRepeat);
   EXPECT_TRUE(srgb.nearest);
@@ -531,8 +531,8 @@ TEST(GltfLoader, ExpandsGreyAlphaTexturesToRgba) {
   b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
   Scene s = load_gltf(b.write(dir, "scene").string());
   ASSERT_EQ(s.textures.size(), 1u);
-  EXPECT_EQ(s.textures[0].texels[0], vec4(1.0f, 1.0f, 1.0f, 0.2f));  // alpha stays linear
-  EXPECT_EQ(s.textures[0].texels[1], vec4(0.0f, 0.0f, 0.0f, 1.0f));
+  EXPECT_EQ(s.textures[0].texel(0), vec4(1.0f, 1.0f, 1.0f, 0.2f));  // alpha stays linear
+  EXPECT_EQ(s.textures[0].texel(1), vec4(0.0f, 0.0f, 0.0f, 1.0f));
   EXPECT_TRUE(has_warning(s, "texCoord"));
 }
 
@@ -542,8 +542,8 @@ TEST(GltfLoader, DecodesSixteenBitTextures) {
   Scene s = load_gltf(textured_triangle("deep.png").write(dir, "scene").string());
   ASSERT_EQ(s.textures.size(), 1u);
   float c = 32768.0f / 65535.0f;
-  EXPECT_NEAR(s.textures[0].texels[0].x, std::pow((c + 0.055f) / 1.055f, 2.4f), 1e-6f);
-  EXPECT_EQ(s.textures[0].texels[1], vec4(1.0f));
+  EXPECT_NEAR(s.textures[0].texel(0).x, std::pow((c + 0.055f) / 1.055f, 2.4f), 1e-6f);
+  EXPECT_EQ(s.textures[0].texel(1), vec4(1.0f));
 }
 
 TEST(GltfLoader, ImagesOtherThanPngOrJpegAreAnError) {

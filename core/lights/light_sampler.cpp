@@ -2,6 +2,7 @@
 
 #include "core/render/surface.h"
 #include "core/sampling/sampling.h"
+#include "core/sampling/spherical_triangle.h"
 
 namespace sst {
 namespace {
@@ -31,6 +32,11 @@ double punctual_power(const PunctualLight& light, const Bounds3& bounds) {
   return 0.0;
 }
 }  // namespace
+
+bool uses_solid_angle_sampling(vec3 p, vec3 v0, vec3 v1, vec3 v2) {
+  float omega = triangle_solid_angle(p, v0, v1, v2);
+  return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
+}
 
 float spot_attenuation(const PunctualLight& light, vec3 light_to_point_unit) {
   float cd = glm::dot(light.direction, light_to_point_unit);
@@ -93,8 +99,13 @@ bool LightSampler::sample(vec3 p, vec2 u, LightSample& out) const {
   size_t k = index - scene_->lights.size();
   uint32_t tri = emissive_triangles_[k];
   const uvec3& t = scene_->triangles[tri];
-  vec2 b = sample_uniform_triangle(u1, u2);
-  vec3 y = (1.0f - b.x - b.y) * scene_->positions[t.x] + b.x * scene_->positions[t.y] + b.y * scene_->positions[t.z];
+  vec3 v0 = scene_->positions[t.x], v1 = scene_->positions[t.y], v2 = scene_->positions[t.z];
+  vec2 b;
+  float solid_angle_pdf = 0.0f;
+  bool spherical = uses_solid_angle_sampling(p, v0, v1, v2) &&
+                   sample_spherical_triangle(p, v0, v1, v2, vec2(u1, u2), &b, &solid_angle_pdf);
+  if (!spherical) b = sample_uniform_triangle(u1, u2);
+  vec3 y = (1.0f - b.x - b.y) * v0 + b.x * v1 + b.y * v2;
   vec3 d = y - p;
   float d2 = glm::dot(d, d);
   if (!(d2 > 0.0f)) return false;
@@ -106,7 +117,7 @@ bool LightSampler::sample(vec3 p, vec2 u, LightSample& out) const {
   out.li = triangle_emission(*scene_, tri, b, cos_light > 0.0f);
   out.point = y;
   out.normal = ng;
-  out.pdf = pick / triangle_area_[k] * d2 / std::abs(cos_light);
+  out.pdf = spherical ? pick * solid_angle_pdf : pick / triangle_area_[k] * d2 / std::abs(cos_light);
   out.delta = false;
   return std::isfinite(out.pdf) && out.pdf > 0.0f;
 }
@@ -115,6 +126,12 @@ float LightSampler::pdf_emissive_hit(vec3 p, uint32_t tri, vec3 y, vec3 ng_light
   if (tri >= light_of_triangle_.size() || light_of_triangle_[tri] == UINT32_MAX) return 0.0f;
   uint32_t index = light_of_triangle_[tri];
   size_t k = index - scene_->lights.size();
+  const uvec3& t = scene_->triangles[tri];
+  vec3 v0 = scene_->positions[t.x], v1 = scene_->positions[t.y], v2 = scene_->positions[t.z];
+  if (uses_solid_angle_sampling(p, v0, v1, v2)) {
+    float omega = triangle_solid_angle(p, v0, v1, v2);
+    return omega > 0.0f ? distribution_.pmf(index) / omega : 0.0f;
+  }
   vec3 d = y - p;
   float d2 = glm::dot(d, d);
   float cos_light = std::abs(glm::dot(ng_light, d)) / std::sqrt(d2);

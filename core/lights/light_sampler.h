@@ -1,6 +1,7 @@
 // Direct-light sampling over every light of a scene: punctual lights (point, spot, directional)
 // and emissive triangles, one light picked in proportion to its power (METHODS.md §0), then a
-// point on it (uniform by area on a triangle). Also answers the pdf of hitting an emissive
+// point on it: uniform by solid angle for a triangle that subtends a large angle from the
+// shading point, uniform by area otherwise. Also answers the pdf of hitting an emissive
 // triangle by BSDF sampling, for multiple importance sampling.
 #pragma once
 #include <vector>
@@ -20,6 +21,10 @@ struct LightSample {
   vec3 point{0.0f};      // the sampled point (point/spot position; unused for directional)
   vec3 normal{0.0f};     // geometric normal at the point (0 for punctual lights)
 };
+
+// Whether an emissive triangle is sampled by solid angle (rather than by area) from p: a pure
+// function of the geometry, so sampling and the MIS pdf of a BSDF hit always agree.
+bool uses_solid_angle_sampling(vec3 p, vec3 v0, vec3 v1, vec3 v2);
 
 // glTF spot attenuation: smooth step between the outer and inner cone cosines, squared.
 float spot_attenuation(const PunctualLight& light, vec3 light_to_point_unit);

@@ -34,6 +34,14 @@ double punctual_power(const PunctualLight& light, const Bounds3& bounds) {
 }  // namespace
 
 bool uses_solid_angle_sampling(vec3 p, vec3 v0, vec3 v1, vec3 v2) {
+  // A cheap estimate decides (area x cosine / d^2 from the centroid): solid-angle sampling
+  // costs trigonometry on every light sample and pays off only where area sampling's 1/d^2
+  // spike is large. Exact solid angles are computed only for triangles that qualify.
+  vec3 c = (v0 + v1 + v2) * (1.0f / 3.0f) - p;
+  vec3 n = glm::cross(v1 - v0, v2 - v0);  // twice the area times the unit normal
+  float d2 = glm::dot(c, c);
+  float estimate = 0.5f * std::abs(glm::dot(n, c)) / (d2 * std::sqrt(d2));
+  if (!(estimate >= kSolidAngleSamplingThreshold)) return false;
   float omega = triangle_solid_angle(p, v0, v1, v2);
   return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
 }

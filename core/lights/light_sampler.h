@@ -25,6 +25,10 @@ struct LightSample {
 // Whether an emissive triangle is sampled by solid angle (rather than by area) from p: a pure
 // function of the geometry, so sampling and the MIS pdf of a BSDF hit always agree.
 bool uses_solid_angle_sampling(vec3 p, vec3 v0, vec3 v1, vec3 v2);
+// Estimated solid angle (sr) above which a triangle is sampled by solid angle. Measured on the
+// Cornell box and the staircase: the RMSE of area sampling matches below it, and the extra
+// trigonometry of every solid-angle sample is paid only where it helps.
+inline constexpr float kSolidAngleSamplingThreshold = 0.05f;
 
 // glTF spot attenuation: smooth step between the outer and inner cone cosines, squared.
 float spot_attenuation(const PunctualLight& light, vec3 light_to_point_unit);

@@ -15,27 +15,35 @@ void add_quad(Scene& s, vec3 a, vec3 b, vec3 c, vec3 d, uint32_t material) {
   s.triangle_material.push_back(material);
   s.triangle_material.push_back(material);
 }
+Material diffuse_material(const char* name, float albedo, float emission) {
+  Material m;
+  m.name = name;
+  m.base_color = vec3(albedo);
+  m.metallic = 0.0f;
+  m.roughness = 1.0f;
+  m.emission = vec3(emission);
+  m.double_sided = true;
+  return m;
+}
+
+Camera camera(const char* name, vec3 eye, float yfov) {
+  Camera c;
+  c.name = name;
+  c.eye = eye;
+  c.forward = {0, 0, -1};
+  c.up = {0, 1, 0};
+  c.yfov = yfov;
+  c.aspect = 1.0f;
+  return c;
+}
 }  // namespace
 
 Scene lambert_plane(float albedo, float half, float camera_height, float yfov) {
   Scene s;
   s.source = "generated:lambert_plane";
-  Material m;
-  m.name = "lambert";
-  m.base_color = vec3(albedo);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.double_sided = true;
-  s.materials.push_back(m);
+  s.materials.push_back(diffuse_material("lambert", albedo, 0.0f));
   add_quad(s, {-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}, 0);
-  Camera c;
-  c.name = "top";
-  c.eye = {0, 0, camera_height};
-  c.forward = {0, 0, -1};
-  c.up = {0, 1, 0};
-  c.yfov = yfov;
-  c.aspect = 1.0f;
-  s.cameras.push_back(c);
+  s.cameras.push_back(camera("top", {0, 0, camera_height}, yfov));
   s.finalize_bounds();
   return s;
 }
@@ -43,14 +51,7 @@ Scene lambert_plane(float albedo, float half, float camera_height, float yfov) {
 Scene emissive_box(float albedo, float emission, float side) {
   Scene s;
   s.source = "generated:emissive_box";
-  Material m;
-  m.name = "furnace";
-  m.base_color = vec3(albedo);
-  m.metallic = 0.0f;
-  m.roughness = 1.0f;
-  m.emission = vec3(emission);
-  m.double_sided = true;
-  s.materials.push_back(m);
+  s.materials.push_back(diffuse_material("furnace", albedo, emission));
   float h = 0.5f * side;
   vec3 p[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, {-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}};
   add_quad(s, p[0], p[1], p[2], p[3], 0);
@@ -59,14 +60,7 @@ Scene emissive_box(float albedo, float emission, float side) {
   add_quad(s, p[3], p[2], p[6], p[7], 0);
   add_quad(s, p[0], p[3], p[7], p[4], 0);
   add_quad(s, p[1], p[5], p[6], p[2], 0);
-  Camera c;
-  c.name = "inside";
-  c.eye = vec3(0.0f);
-  c.forward = {0, 0, -1};
-  c.up = {0, 1, 0};
-  c.yfov = 1.2f;
-  c.aspect = 1.0f;
-  s.cameras.push_back(c);
+  s.cameras.push_back(camera("inside", vec3(0.0f), 1.2f));
   s.finalize_bounds();
   return s;
 }

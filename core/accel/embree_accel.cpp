@@ -48,22 +48,30 @@ EmbreeAccel::~EmbreeAccel() {
   if (device_) rtcReleaseDevice(device_);
 }
 
+namespace {
+RTCRay to_rtc(const Ray& ray) {
+  RTCRay r;
+  r.org_x = ray.origin.x;
+  r.org_y = ray.origin.y;
+  r.org_z = ray.origin.z;
+  r.dir_x = ray.direction.x;
+  r.dir_y = ray.direction.y;
+  r.dir_z = ray.direction.z;
+  r.tnear = ray.tmin;
+  r.tfar = ray.tmax;
+  r.time = 0.0f;
+  r.mask = UINT32_MAX;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+}  // namespace
+
 Hit EmbreeAccel::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray.org_x = ray.origin.x;
-  rh.ray.org_y = ray.origin.y;
-  rh.ray.org_z = ray.origin.z;
-  rh.ray.dir_x = ray.direction.x;
-  rh.ray.dir_y = ray.direction.y;
-  rh.ray.dir_z = ray.direction.z;
-  rh.ray.tnear = ray.tmin;
-  rh.ray.tfar = ray.tmax;
-  rh.ray.time = 0.0f;
-  rh.ray.mask = UINT32_MAX;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  rh.ray = to_rtc(ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
@@ -78,19 +86,7 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
 bool EmbreeAccel::occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r;
-  r.org_x = ray.origin.x;
-  r.org_y = ray.origin.y;
-  r.org_z = ray.origin.z;
-  r.dir_x = ray.direction.x;
-  r.dir_y = ray.direction.y;
-  r.dir_z = ray.direction.z;
-  r.tnear = ray.tmin;
-  r.tfar = ray.tmax;
-  r.time = 0.0f;
-  r.mask = UINT32_MAX;
-  r.id = 0;
-  r.flags = 0;
+  RTCRay r = to_rtc(ray);
   rtcOccluded1(scene_, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }

@@ -48,21 +48,68 @@ Scene lambert_plane(float albedo, float half, float camera_height, float yfov) {
   return s;
 }
 
+namespace {
+// The six inward-wound faces of a cube of side `side` centred at the origin, one material.
+void add_cube(Scene& s, float side, uint32_t material) {
+  float h = 0.5f * side;
+  vec3 p[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, {-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}};
+  add_quad(s, p[0], p[1], p[2], p[3], material);
+  add_quad(s, p[4], p[7], p[6], p[5], material);
+  add_quad(s, p[0], p[4], p[5], p[1], material);
+  add_quad(s, p[3], p[2], p[6], p[7], material);
+  add_quad(s, p[0], p[3], p[7], p[4], material);
+  add_quad(s, p[1], p[5], p[6], p[2], material);
+}
+}  // namespace
+
 Scene emissive_box(float albedo, float emission, float side) {
   Scene s;
   s.source = "generated:emissive_box";
   s.materials.push_back(diffuse_material("furnace", albedo, emission));
-  float h = 0.5f * side;
-  vec3 p[8] = {{-h, -h, -h}, {h, -h, -h}, {h, h, -h}, {-h, h, -h}, {-h, -h, h}, {h, -h, h}, {h, h, h}, {-h, h, h}};
-  add_quad(s, p[0], p[1], p[2], p[3], 0);
-  add_quad(s, p[4], p[7], p[6], p[5], 0);
-  add_quad(s, p[0], p[4], p[5], p[1], 0);
-  add_quad(s, p[3], p[2], p[6], p[7], 0);
-  add_quad(s, p[0], p[3], p[7], p[4], 0);
-  add_quad(s, p[1], p[5], p[6], p[2], 0);
+  add_cube(s, side, 0);
   s.cameras.push_back(camera("inside", vec3(0.0f), 1.2f));
   s.finalize_bounds();
   return s;
+}
+
+Scene diffuse_box(vec3 albedo, float side) {
+  Scene s;
+  s.source = "generated:diffuse_box";
+  Material m = diffuse_material("box", 1.0f, 0.0f);
+  m.base_color = albedo;
+  s.materials.push_back(m);
+  add_cube(s, side, 0);
+  s.cameras.push_back(camera("inside", vec3(0.0f), 1.2f));
+  s.finalize_bounds();
+  return s;
+}
+
+PunctualLight punctual_light(LightType type, vec3 position, vec3 direction, vec3 intensity) {
+  PunctualLight l;
+  l.name = "light";
+  l.type = type;
+  l.position = position;
+  l.direction = glm::normalize(direction);
+  l.intensity = intensity;
+  return l;
+}
+
+void add_emissive_triangle(Scene& s, vec3 a, vec3 b, vec3 c, vec3 emission, bool double_sided) {
+  Material m = diffuse_material("emitter", 0.0f, 0.0f);
+  m.emission = emission;
+  m.double_sided = double_sided;
+  uint32_t material = uint32_t(s.materials.size());
+  s.materials.push_back(m);
+  uint32_t base = uint32_t(s.positions.size());
+  vec3 n = glm::normalize(glm::cross(b - a, c - a));
+  for (vec3 p : {a, b, c}) {
+    s.positions.push_back(p);
+    s.normals.push_back(n);
+    s.uvs.push_back(vec2(0.0f));
+  }
+  s.triangles.push_back({base, base + 1, base + 2});
+  s.triangle_material.push_back(material);
+  s.finalize_bounds();
 }
 
 void scale_scene(Scene& scene, float k) {

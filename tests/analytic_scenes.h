@@ -13,6 +13,17 @@ Scene lambert_plane(float albedo, float half, float camera_height, float yfov);
 // `albedo` and emitting `emission` from both sides; camera at the centre looking down -z.
 Scene emissive_box(float albedo, float emission, float side);
 
+// A closed axis-aligned cube of side `side` centred at the origin, every face diffuse (double-
+// sided) with RGB albedo `albedo` and no emission; camera at the centre looking down -z.
+Scene diffuse_box(vec3 albedo, float side);
+
+// A punctual light; `direction` is normalised (the direction the light travels).
+PunctualLight punctual_light(LightType type, vec3 position, vec3 direction, vec3 intensity);
+
+// Adds triangle (a, b, c) (normal by winding) with a new black emissive material, then refreshes
+// the scene bounds.
+void add_emissive_triangle(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 emission, bool double_sided);
+
 // Scales every position, light and camera of a scene by s (scene-scale tests).
 void scale_scene(Scene& scene, float s);
 

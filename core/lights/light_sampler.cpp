@@ -1,6 +1,7 @@
 #include "core/lights/light_sampler.h"
 
 #include "core/render/surface.h"
+#include "core/rng/sobol_sampler.h"
 #include "core/sampling/sampling.h"
 #include "core/sampling/spherical_triangle.h"
 
@@ -30,6 +31,43 @@ double punctual_power(const PunctualLight& light, const Bounds3& bounds) {
     }
   }
   return 0.0;
+}
+
+// Emission from a point or spot light at its position (see sample_emission in the header).
+// The spot's directions are drawn inside its outer cone only: outside it the glTF attenuation is
+// zero, so nothing is lost and no path is wasted on a direction that carries nothing.
+bool emit_point_or_spot(const PunctualLight& light, vec2 u_dir, EmissionSample& out) {
+  out.position = light.position;
+  if (light.type == LightType::Point) {
+    out.direction = sample_uniform_sphere(u_dir.x, u_dir.y);
+    out.weight = light.intensity * (4.0f * kPi);  // I / pdf, pdf = 1/(4 pi)
+    return true;
+  }
+  float one_minus_cos = 1.0f - std::clamp(light.cos_outer, -1.0f, 1.0f);
+  if (!(one_minus_cos > 0.0f)) return false;  // a cone of zero angle emits nothing
+  float cos_t = 1.0f - u_dir.x * one_minus_cos;
+  float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
+  float phi = 2.0f * kPi * u_dir.y;
+  out.direction = glm::normalize(Frame::from_normal(light.direction)
+                                     .to_world(vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t)));
+  // I att(w) / pdf, pdf = 1 / (2 pi (1 - cos_outer)): uniform over the cone's solid angle.
+  out.weight = light.intensity * (spot_attenuation(light, out.direction) * 2.0f * kPi * one_minus_cos);
+  return true;
+}
+
+// A directional light's parallel rays cross the disc of the bounding sphere (centre c, radius r)
+// perpendicular to their direction; a uniform point on it, pdf 1/(pi r^2), carries E pi r^2.
+// The disc is placed a little more than r upstream of c, so every ray starts outside the scene.
+bool emit_directional(const PunctualLight& light, const Bounds3& bounds, vec2 u_pos, EmissionSample& out) {
+  float r = 0.5f * bounds.diagonal();
+  if (!(r > 0.0f) || !std::isfinite(r)) return false;
+  Frame frame = Frame::from_normal(light.direction);
+  float rho = r * std::sqrt(u_pos.x), phi = 2.0f * kPi * u_pos.y;
+  out.position = bounds.center() - light.direction * (1.01f * r) +
+                 frame.t * (rho * std::cos(phi)) + frame.b * (rho * std::sin(phi));
+  out.direction = light.direction;
+  out.weight = light.intensity * (kPi * r * r);
+  return true;
 }
 }  // namespace
 
@@ -145,6 +183,52 @@ float LightSampler::pdf_emissive_hit(vec3 p, uint32_t tri, vec3 y, vec3 ng_light
   float cos_light = std::abs(glm::dot(ng_light, d)) / std::sqrt(d2);
   if (!(cos_light > 0.0f)) return 0.0f;
   return distribution_.pmf(index) / triangle_area_[k] * d2 / cos_light;
+}
+
+bool LightSampler::sample_emission(float u_pick, vec2 u_pos, vec2 u_dir, EmissionSample& out) const {
+  out = EmissionSample{};
+  if (empty()) return false;
+  uint32_t index = distribution_.sample(u_pick);
+  float pick = distribution_.pmf(index);
+  if (!(pick > 0.0f)) return false;
+  out.light = index;
+  bool ok = false;
+  if (index < scene_->lights.size()) {
+    const PunctualLight& light = scene_->lights[index];
+    ok = light.type == LightType::Directional ? emit_directional(light, scene_->bounds, u_pos, out)
+                                              : emit_point_or_spot(light, u_dir, out);
+  } else {
+    ok = emit_triangle(index - scene_->lights.size(), u_pos, u_dir, out);
+  }
+  if (!ok) return false;
+  out.weight /= pick;
+  return is_finite(out.weight) && max_component(out.weight) > 0.0f;
+}
+
+// Uniform position (pdf 1/A) and cosine-weighted direction about the emitting side (pdf cos/pi,
+// times 1/2 for the side choice of a double-sided emitter): Le cos / (pdf_pos pdf_dir) =
+// Le pi A (x2), the flux one side emits (Le pi A) divided by the probability of that side.
+bool LightSampler::emit_triangle(size_t k, vec2 u_pos, vec2 u_dir, EmissionSample& out) const {
+  uint32_t tri = emissive_triangles_[k];
+  const uvec3& t = scene_->triangles[tri];
+  vec2 b = sample_uniform_triangle(u_pos.x, u_pos.y);
+  out.position = (1.0f - b.x - b.y) * scene_->positions[t.x] + b.x * scene_->positions[t.y] +
+                 b.y * scene_->positions[t.z];
+  bool double_sided = scene_->materials[scene_->triangle_material[tri]].double_sided;
+  bool front = true;
+  float u_side = u_dir.x;
+  if (double_sided) {
+    front = u_side < 0.5f;
+    u_side = front ? remap_below(u_side, 0.5f) : remap_above(u_side, 0.5f);
+  }
+  vec3 ng = triangle_geometric_normal(*scene_, tri);
+  out.normal = front ? ng : -ng;
+  vec3 local = sample_cosine_hemisphere(u_side, u_dir.y);
+  if (!(local.z > 0.0f)) return false;  // grazing: zero pdf and zero cosine
+  out.direction = glm::normalize(Frame::from_normal(out.normal).to_world(local));
+  float sides = double_sided ? 2.0f : 1.0f;
+  out.weight = triangle_emission(*scene_, tri, b, front) * (kPi * triangle_area_[k] * sides);
+  return true;
 }
 
 }  // namespace sst

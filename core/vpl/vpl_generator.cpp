@@ -1,0 +1,211 @@
+#include "core/vpl/vpl_generator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <string>
+
+#include "core/render/surface.h"
+#include "core/rng/hash_rng.h"
+#include "core/sampling/sampling.h"
+#include "core/vpl/vpl_clamp.h"
+
+namespace sst {
+namespace {
+
+// Paths are traced in fixed chunks of consecutive indices, each chunk into its own buffers, and
+// the chunks are concatenated in index order: the output never depends on which thread ran what.
+constexpr uint64_t kPathsPerChunk = 256;
+// vpls * kMaxPathsPerVpl path indices must fit the 32-bit HashRng counter.
+constexpr int kMaxVpls = 50'000'000;
+
+struct Chunk {
+  std::vector<Vpl> vpls;           // path order, then hit order
+  std::vector<uint16_t> hit;       // hit index of each VPL (0: first hit)
+  std::vector<uint32_t> path_end;  // per path of the chunk: one past its last VPL in `vpls`
+  uint64_t rays = 0;
+};
+
+struct Tracer {
+  const Scene& scene;
+  const EmbreeAccel& accel;
+  const LightSampler& lights;
+  const VplParams& params;
+  uint32_t seed;
+  bool diffuse_only;
+
+  vec3 diffuse_albedo(const Surface& s) const {
+    return diffuse_only ? s.base_color : (1.0f - s.metallic) * s.base_color;
+  }
+
+  // One light path; appends its VPLs (intensity not yet divided by the path count) to `out`.
+  // Random numbers are drawn in a fixed order: pick, position (2), direction (2), then per hit
+  // bounce direction (2) and roulette (1).
+  void trace(uint32_t path, Chunk& out) const {
+    HashRng rng(seed, path, 0, kVplStream);
+    float u_pick = rng.next();
+    vec2 u_pos(rng.next(), rng.next());
+    vec2 u_dir(rng.next(), rng.next());
+    EmissionSample e;
+    if (!lights.sample_emission(u_pick, u_pos, u_dir, e)) return;
+    Ray ray;
+    ray.origin = e.normal == vec3(0.0f) ? e.position : accel.offset_point(e.position, e.normal);
+    ray.direction = e.direction;
+    vec3 beta = e.weight;
+    for (int hit_index = 0; hit_index < params.vpl_max_bounces; ++hit_index) {
+      ++out.rays;
+      Hit hit = accel.intersect(ray);
+      if (!hit.valid()) return;
+      Surface s = make_surface(scene, hit, ray.direction);
+      vec3 albedo = diffuse_albedo(s);
+      // Light arriving under the shading hemisphere is not reflected: the path tracer's rule.
+      if (!(glm::dot(ray.direction, s.ns) < 0.0f) || !(max_component(albedo) > 0.0f)) return;
+      vec3 intensity = beta * albedo * kInvPi;
+      if (!is_finite(intensity)) return;
+      out.vpls.push_back({s.p, s.ns, intensity});
+      out.hit.push_back(uint16_t(hit_index));
+      if (hit_index + 1 >= params.vpl_max_bounces) return;
+
+      vec2 u_bounce(rng.next(), rng.next());
+      float u_roulette = rng.next();
+      if (hit_index + 1 >= params.vpl_min_bounces) {
+        float survive = std::min(1.0f, max_component(albedo));
+        if (u_roulette >= survive) return;
+        beta /= survive;
+      }
+      // Cosine-weighted about the shading normal: f cos / pdf = albedo.
+      vec3 wi = Frame::from_normal(s.ns).to_world(sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
+      if (!(glm::dot(wi, s.ng) > 0.0f)) return;  // would pass through the surface
+      beta *= albedo;
+      ray.origin = accel.offset_point(s.p, s.ng);
+      ray.direction = wi;
+      ray.tmin = 0.0f;
+      ray.tmax = kInf;
+    }
+  }
+
+  void trace_chunk(uint64_t first_path, uint64_t end_path, Chunk& chunk) const {
+    chunk.path_end.reserve(size_t(end_path - first_path));
+    for (uint64_t p = first_path; p < end_path; ++p) {
+      trace(uint32_t(p), chunk);
+      chunk.path_end.push_back(uint32_t(chunk.vpls.size()));
+    }
+  }
+};
+
+// Paths for the next batch: from the VPLs per path seen so far, the remaining count plus 1% and
+// a chunk (a shortfall costs one more, small, batch); a first pilot batch is small, so a scene
+// with many VPLs per path is not overshot by much. Any batching gives the same set; this only
+// bounds the paths traced past the last one used.
+uint64_t next_batch(uint64_t remaining, uint64_t deposited, uint64_t traced) {
+  if (traced == 0) return std::clamp<uint64_t>(remaining / 16, kPathsPerChunk, 64 * kPathsPerChunk);
+  if (deposited == 0) return 4 * traced;
+  double per_path = double(deposited) / double(traced);
+  return uint64_t(1.01 * double(remaining) / per_path) + kPathsPerChunk;
+}
+
+// Traces chunks of paths in parallel until `target` VPLs exist or `max_paths` were traced.
+std::vector<Chunk> trace_chunks(const Tracer& tracer, uint64_t target, uint64_t max_paths) {
+  std::vector<Chunk> chunks;
+  uint64_t deposited = 0, traced = 0;
+  while (deposited < target && traced < max_paths) {
+    uint64_t batch = std::min(next_batch(target - deposited, deposited, traced), max_paths - traced);
+    size_t first = chunks.size();
+    size_t count = size_t((batch + kPathsPerChunk - 1) / kPathsPerChunk);
+    chunks.resize(first + count);
+    tbb::parallel_for(tbb::blocked_range<size_t>(first, first + count, 1), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t c = r.begin(); c != r.end(); ++c) {
+        uint64_t begin = uint64_t(c) * kPathsPerChunk;
+        tracer.trace_chunk(begin, std::min(begin + kPathsPerChunk, max_paths), chunks[c]);
+      }
+    });
+    for (size_t c = first; c < chunks.size(); ++c) deposited += chunks[c].vpls.size();
+    traced = std::min(uint64_t(chunks.size()) * kPathsPerChunk, max_paths);
+  }
+  return chunks;
+}
+
+// Concatenates the chunks up to the path that completes `target` VPLs (dropping its surplus),
+// divides every intensity by the number of paths that took part, and fills the statistics.
+VplSet assemble(const std::vector<Chunk>& chunks, uint64_t target, uint64_t max_paths, int max_hits,
+                VplStats& stats) {
+  VplSet out;
+  std::vector<uint16_t> hits;
+  uint64_t paths = 0;
+  for (size_t c = 0; c < chunks.size() && out.size() < target; ++c) {
+    const Chunk& chunk = chunks[c];
+    uint64_t need = target - out.size();
+    size_t take = chunk.vpls.size();
+    paths = uint64_t(c) * kPathsPerChunk + chunk.path_end.size();
+    if (take >= need) {
+      take = size_t(need);
+      size_t j = size_t(std::lower_bound(chunk.path_end.begin(), chunk.path_end.end(), uint32_t(need)) -
+                        chunk.path_end.begin());
+      paths = uint64_t(c) * kPathsPerChunk + j + 1;
+    }
+    out.insert(out.end(), chunk.vpls.begin(), chunk.vpls.begin() + take);
+    hits.insert(hits.end(), chunk.hit.begin(), chunk.hit.begin() + take);
+  }
+  if (out.size() < target) paths = std::min(uint64_t(chunks.size()) * kPathsPerChunk, max_paths);
+  stats.paths = paths;
+  stats.path_limit_reached = max_paths > 0 && out.size() < target && paths >= max_paths;
+  stats.vpls_per_bounce.assign(size_t(max_hits), 0);
+  stats.intensity_per_bounce.assign(size_t(max_hits), dvec3(0.0));
+  if (paths == 0) return out;
+  const float inv_paths = float(1.0 / double(paths));
+  for (size_t i = 0; i < out.size(); ++i) {
+    out[i].intensity *= inv_paths;
+    ++stats.vpls_per_bounce[hits[i]];
+    stats.intensity_per_bounce[hits[i]] += dvec3(out[i].intensity);
+  }
+  return out;
+}
+
+}  // namespace
+
+void validate(const VplParams& p) {
+  if (p.vpls < 1) throw Error("vpls must be >= 1 (got " + std::to_string(p.vpls) + ")");
+  if (p.vpls > kMaxVpls) throw Error("vpls must be <= " + std::to_string(kMaxVpls) + " (got " + std::to_string(p.vpls) + ")");
+  if (p.vpl_max_bounces < 1) throw Error("vpl_max_bounces must be >= 1 (got " + std::to_string(p.vpl_max_bounces) + ")");
+  if (p.vpl_max_bounces > 1024) throw Error("vpl_max_bounces must be <= 1024 (got " + std::to_string(p.vpl_max_bounces) + ")");
+  if (p.vpl_min_bounces < 0) throw Error("vpl_min_bounces must be >= 0 (got " + std::to_string(p.vpl_min_bounces) + ")");
+  if (!(p.clamp_fraction >= 0.0f) || !std::isfinite(p.clamp_fraction))
+    throw Error("clamp_fraction must be a finite number >= 0 (got " + std::to_string(p.clamp_fraction) + ")");
+}
+
+nlohmann::json to_json(const VplStats& s) {
+  nlohmann::json intensity = nlohmann::json::array();
+  for (const dvec3& i : s.intensity_per_bounce) intensity.push_back({i.x, i.y, i.z});
+  return {{"paths", s.paths},
+          {"paths_traced", s.paths_traced},
+          {"vpls", s.vpls},
+          {"rays", s.rays},
+          {"ms", s.ms},
+          {"path_limit_reached", s.path_limit_reached},
+          {"clamp_distance", s.clamp_distance},
+          {"vpls_per_bounce", s.vpls_per_bounce},
+          {"intensity_per_bounce", intensity}};
+}
+
+VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
+                     const VplParams& params, uint32_t seed, bool diffuse_only, VplStats* stats) {
+  validate(params);
+  auto start = std::chrono::steady_clock::now();
+  VplStats local;
+  VplStats& st = stats ? *stats : local;
+  st = VplStats{};
+  const uint64_t target = uint64_t(params.vpls);
+  const uint64_t max_paths = lights.empty() ? 0 : kMaxPathsPerVpl * target;
+  Tracer tracer{scene, accel, lights, params, seed, diffuse_only};
+  std::vector<Chunk> chunks = trace_chunks(tracer, target, max_paths);
+  VplSet vpls = assemble(chunks, target, max_paths, params.vpl_max_bounces, st);
+  st.paths_traced = std::min(uint64_t(chunks.size()) * kPathsPerChunk, max_paths);
+  for (const Chunk& c : chunks) st.rays += c.rays;
+  st.vpls = vpls.size();
+  st.clamp_distance = vpl_clamp_distance(params.clamp_fraction, vpls, scene);
+  st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return vpls;
+}
+
+}  // namespace sst

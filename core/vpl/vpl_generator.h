@@ -1,0 +1,85 @@
+// Instant-radiosity VPL generation (Keller 1997; METHODS.md §1): light paths leave the lights
+// (LightSampler::sample_emission) and deposit a VPL at every diffuse surface they hit, with
+// intensity = throughput * albedo / pi, then bounce on, cosine-weighted.
+//
+// | parameter        | default | meaning                                                            |
+// |------------------|---------|--------------------------------------------------------------------|
+// | vpls             | 100000  | VPLs to deposit: paths are traced, in order, until exactly this many |
+// | vpl_max_bounces  | 8       | surface hits per light path that deposit a VPL (1: one-bounce GI)   |
+// | vpl_min_bounces  | 3       | hits before Russian roulette (survival = max albedo component)       |
+// | clamp_fraction   | 0.01    | singularity clamp c = clamp_fraction * D, D = VPL-bounds diagonal    |
+//
+// Path count. Path i always uses HashRng(seed, i, 0, kVplStream), so a path is a pure function of
+// (seed, i). Paths 0, 1, 2, ... are traced until `vpls` VPLs exist; the last path's surplus VPLs
+// are dropped, so the set has exactly `vpls` VPLs (fewer only when the scene cannot produce
+// them: see kMaxPathsPerVpl). Every intensity is divided by P, the number of paths traced up to
+// and including the last one used, escaped and empty paths included. P is a stopping time, which
+// makes the estimate consistent with a bias of order 1/P (none at all when every path deposits
+// the same number of VPLs, e.g. a closed box without roulette); an exact count keeps tables "at
+// N VPLs" honest. The result does not depend on the thread count or the batching.
+//
+// What is deposited. Both sides of every surface receive VPLs, single-sided materials included,
+// because the path tracer shades both sides (only emission is one-sided): the VPL's normal is the
+// shading normal turned to the side the light came from. Black surfaces (zero diffuse albedo)
+// deposit nothing and end the path: a zero-intensity VPL would only cost shading time.
+// In full-BRDF mode the albedo is the diffuse part (1 - metallic) * baseColor (textures applied);
+// the specular lobe is not followed, so light reaching diffuse surfaces via a glossy bounce is not
+// represented (as in the papers). diffuse_only uses baseColor.
+// With interpolated (shading) normals, the adjoint shading-normal correction of light tracing is
+// not applied: exact for flat-shaded geometry, a small bias on smooth-shaded meshes.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/accel/embree_accel.h"
+#include "core/lights/light_sampler.h"
+#include "core/scene/scene.h"
+#include "core/util/params.h"
+#include "core/vpl/vpl.h"
+
+namespace sst {
+
+// HashRng stream of VPL generation, distinct from pixel sampling (stream 0).
+inline constexpr uint32_t kVplStream = 0x56504C31u;  // "VPL1"
+// A scene that deposits fewer than one VPL per this many paths (everything black, or lights
+// that miss the geometry) stops here with fewer VPLs than asked for, instead of tracing forever.
+inline constexpr uint64_t kMaxPathsPerVpl = 64;
+
+struct VplParams {
+  int vpls = 100000;
+  int vpl_max_bounces = 8;
+  int vpl_min_bounces = 3;
+  float clamp_fraction = 0.01f;
+
+  template <class V>
+  void visit(V&& v) {
+    v("vpls", vpls, "number of virtual point lights to deposit");
+    v("vpl_max_bounces", vpl_max_bounces, "surface hits per light path that deposit a VPL");
+    v("vpl_min_bounces", vpl_min_bounces, "light-path hits before Russian roulette may end a path");
+    v("clamp_fraction", clamp_fraction, "VPL singularity clamp distance as a fraction of the VPL-bounds diagonal");
+  }
+};
+
+// Throws sst::Error naming the parameter when a value is impossible.
+void validate(const VplParams& params);
+
+struct VplStats {
+  uint64_t paths = 0;          // P: paths the set represents (intensities are divided by it)
+  uint64_t paths_traced = 0;   // including paths traced past the last one used
+  uint64_t vpls = 0;           // deposited (== the set's size)
+  uint64_t rays = 0;           // closest-hit rays of all traced paths
+  double ms = 0.0;             // wall time of generation
+  bool path_limit_reached = false;  // stopped at kMaxPathsPerVpl * vpls paths
+  float clamp_distance = 0.0f;      // c of vpl_clamp_distance for this set
+  // Per surface hit (index 0 = first hit = one-bounce VPLs): VPL count and summed intensity.
+  std::vector<uint64_t> vpls_per_bounce;
+  std::vector<dvec3> intensity_per_bounce;
+};
+
+// The statistics for a JSON record (per-bounce intensity as RGB triples).
+nlohmann::json to_json(const VplStats& stats);
+
+VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
+                     const VplParams& params, uint32_t seed, bool diffuse_only, VplStats* stats = nullptr);
+
+}  // namespace sst

@@ -1,0 +1,137 @@
+#include "core/lighttree/light_tree.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "core/lighttree/sort_key.h"
+#include "core/lighttree/tree_builders.h"
+#include "core/util/error.h"
+
+namespace sst {
+namespace {
+
+const std::vector<std::string> kTreeKinds = {"radix", "perfect", "agglomerative"};
+const std::vector<std::string> kLengthScales = {"vpl_bounds", "scene_bounds"};
+
+// Runs f and adds its wall time to `ms`.
+template <class F>
+void timed(double& ms, F&& f) {
+  auto start = std::chrono::steady_clock::now();
+  f();
+  ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+float length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const Bounds3* scene_bounds) {
+  if (params.sigma_max_relative_to == "vpl_bounds") return vpl_bounds.diagonal();
+  if (!scene_bounds || scene_bounds->empty())
+    throw Error("light tree: sigma_max_relative_to 'scene_bounds' needs the scene bounds, and none were given");
+  return scene_bounds->diagonal();
+}
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+}  // namespace
+
+void validate(const LightTreeParams& params) {
+  if (!contains(kTreeKinds, params.tree))
+    throw Error("light tree: unknown tree '" + params.tree + "' (did you mean '" + nearest_name(params.tree, kTreeKinds) +
+                "'?)");
+  if (!(params.v_min >= 0.0f && params.v_min <= 1.0f))
+    throw Error("light tree: v_min " + std::to_string(params.v_min) + " is not in [0, 1]");
+  if (!(params.sigma_max >= 0.0f) || !std::isfinite(params.sigma_max))
+    throw Error("light tree: sigma_max " + std::to_string(params.sigma_max) + " is not a finite number >= 0");
+  if (!contains(kLengthScales, params.sigma_max_relative_to))
+    throw Error("light tree: sigma_max_relative_to '" + params.sigma_max_relative_to + "' is not vpl_bounds or scene_bounds");
+}
+
+void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
+               LightTreeBuildStats& stats) {
+  timed(stats.keys_ms, [&] { compute_sort_keys(vpls, vpl_bounds, scratch.keys, scratch.ids); });
+  // The id bits are already ascending in input order and the sort is stable: sorting only the
+  // Morton and normal bits gives the full keys' order, with 5 passes instead of 8.
+  timed(stats.sort_ms, [&] { radix_sort_pairs(scratch.keys, scratch.ids, scratch.sort, kIdBits, 64); });
+}
+
+LightTreeBuilder::LightTreeBuilder() : scratch_(std::make_unique<Scratch>()) {}
+LightTreeBuilder::~LightTreeBuilder() = default;
+LightTreeBuilder::LightTreeBuilder(LightTreeBuilder&&) noexcept = default;
+LightTreeBuilder& LightTreeBuilder::operator=(LightTreeBuilder&&) noexcept = default;
+
+void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
+                             LightTree& tree, LightTreeBuildStats* stats_out) {
+  validate(params);
+  // Size limits first, so that a refused build leaves `tree` as it was.
+  check_sort_key_capacity(vpls.size());
+  if (params.tree == "agglomerative" && vpls.size() > kMaxAgglomerativeVpls)
+    throw Error("light tree: tree 'agglomerative' is O(n^2) and limited to " + std::to_string(kMaxAgglomerativeVpls) +
+                " VPLs, got " + std::to_string(vpls.size()) + " (use tree 'radix' or 'perfect')");
+  LightTreeBuildStats stats;
+  auto start = std::chrono::steady_clock::now();
+  Bounds3 bounds;
+  timed(stats.bounds_ms, [&] { bounds = compute_vpl_bounds(vpls); });
+  float scale = length_scale(params, bounds, scene_bounds);
+  tree.kind = params.tree;
+  tree.vpl_count = uint32_t(vpls.size());
+  tree.vpl_bounds = bounds;
+  tree.length_scale = scale;
+  tree.v_min = params.v_min;
+  tree.sigma_max_abs = params.sigma_max * tree.length_scale;
+  SubstituteThresholds thresholds{tree.v_min, tree.sigma_max_abs};
+  if (params.tree == "agglomerative") {
+    timed(stats.hierarchy_ms, [&] { build_agglomerative_tree(vpls, thresholds, tree.length_scale, tree); });
+  } else {
+    sort_vpls(vpls, bounds, *scratch_, stats);
+    if (params.tree == "radix") {
+      timed(stats.hierarchy_ms, [&] { build_radix_hierarchy(*scratch_, tree); });
+      timed(stats.merge_ms, [&] { merge_radix_tree(vpls, thresholds, *scratch_, tree); });
+    } else {
+      timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, *scratch_, tree); });
+    }
+  }
+  stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (stats_out) *stats_out = stats;
+}
+
+LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
+                           LightTreeBuildStats* stats) {
+  LightTree tree;
+  LightTreeBuilder().build(vpls, params, scene_bounds, tree, stats);
+  return tree;
+}
+
+uint32_t tree_height(const LightTree& tree) {
+  if (tree.empty()) return 0;
+  uint32_t height = 0;
+  std::vector<std::pair<uint32_t, uint32_t>> stack{{tree.root, 0}};
+  while (!stack.empty()) {
+    auto [node, depth] = stack.back();
+    stack.pop_back();
+    height = std::max(height, depth);
+    const LightNode& n = tree.nodes[node];
+    if (n.is_leaf()) continue;
+    stack.push_back({n.left, depth + 1});
+    stack.push_back({n.right, depth + 1});
+  }
+  return height;
+}
+
+size_t count_suitable_internal(const LightTree& tree) {
+  if (tree.empty()) return 0;
+  size_t count = 0;
+  std::vector<uint32_t> stack{tree.root};
+  while (!stack.empty()) {
+    const LightNode& n = tree.nodes[stack.back()];
+    stack.pop_back();
+    if (n.is_leaf()) continue;
+    if (n.suitable()) ++count;
+    stack.push_back(n.left);
+    stack.push_back(n.right);
+  }
+  return count;
+}
+
+}  // namespace sst

@@ -1,0 +1,155 @@
+// Light trees over a VPL set (METHODS.md §2): a binary hierarchy whose every node carries the
+// summed intensity, bounding box and VPL count of its subtree, plus the SST substitute
+// distribution of its VPLs (Tatzgern et al. 2020, eqs. 1-3). The samplers of METHODS.md §3 walk
+// it; all builders produce the same flat node layout, so every sampler works on every tree.
+//
+// | parameter             | default      | meaning                                                        |
+// |-----------------------|--------------|----------------------------------------------------------------|
+// | tree                  | radix        | builder: radix (Karras 2012, the SST paper's), perfect (heap; RTSLC, hybrid), agglomerative (Walter 2005, <= 20000 VPLs) |
+// | v_min                 | 0.5          | SST: a node is suitable only if its normal similarity v >= v_min (paper 0.5, thesis 0.7) |
+// | sigma_max             | 0.005        | SST: ... and if sigma_z <= sigma_max * D (paper 0.1 scene units ~ 0.005 D, thesis 0.3 ~ 0.015 D) |
+// | sigma_max_relative_to | vpl_bounds   | D: diagonal of the VPL bounding box (vpl_bounds) or of the scene's (scene_bounds) |
+//
+// Length scale D. sigma_max is a fraction of D, never an absolute length, because scenes come
+// in millimetres and kilometres. By default D is the diagonal of the bounding box of the VPL
+// positions: the extent of what is lit, which unlike the scene box is not inflated by a large
+// ground plane or sky geometry outside a room. The paper's sigma_max = 0.1 is in its scene
+// units: roughly metres, in rooms some 20 units across, so 0.1 / 20 = 0.005 of D (METHODS.md's
+// figure; measured against the box diagonal of such a room, ~30 units, it would be nearer
+// 0.003: the conversion is a rough one either way, hence "measure the sensitivity"). The
+// thesis's 0.3, by the same yardstick (it does not state its scene scale), is 0.015 of D.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "core/math/math.h"
+#include "core/util/params.h"
+#include "core/vpl/vpl.h"
+
+namespace sst {
+
+inline constexpr uint32_t kNoNode = 0xffffffffu;
+
+// One node, leaf or internal. Plain data in a flat array, to be uploaded to the GPU as is: six
+// 16-byte rows (a vec3 and a 4-byte scalar each, which is also std430's layout of a vec3
+// followed by a scalar), 96 bytes, the size the SST paper reports, and no padding bytes, so two
+// trees can be compared with memcmp.
+struct LightNode {
+  static constexpr uint32_t kLeaf = 1u;      // no children; `left` is the VPL index
+  static constexpr uint32_t kSuitable = 2u;  // SST: v >= v_min and sigma_z <= sigma_max * D
+
+  vec3 bounds_lo;  // AABB of the subtree's VPL positions; empty (lo = +inf, hi = -inf) for no VPLs
+  uint32_t left;   // internal: first child's node index; leaf: VPL index, kNoNode for padding
+  vec3 bounds_hi;
+  uint32_t right;  // internal: second child's node index; leaf: kNoNode
+  vec3 intensity;  // sum of the subtree's VPL intensities (RGB, fp32: fp16 overflows at 65504)
+  uint32_t vpl_count;
+  vec3 mean;         // SST p: luminance-weighted mean position
+  float similarity;  // SST v = v1 v2 max(n1.n2, 0); 1 at leaves
+  vec3 normal;       // SST n: unit; defines the local frame Frame::from_normal(normal)
+  float sigma_z;     // SST sqrt(variance.z); 0 at leaves
+  vec3 variance;     // SST s2 in the local frame (x, y on the tangent plane, z along normal)
+  uint32_t flags;
+
+  bool is_leaf() const { return (flags & kLeaf) != 0; }
+  bool suitable() const { return (flags & kSuitable) != 0; }
+  bool empty() const { return vpl_count == 0; }
+  Bounds3 bounds() const { return {bounds_lo, bounds_hi}; }
+  uint32_t vpl() const { return left; }  // leaves only
+};
+static_assert(sizeof(LightNode) == 96 && alignof(LightNode) == 4);
+static_assert(offsetof(LightNode, left) == 12 && offsetof(LightNode, bounds_hi) == 16 &&
+              offsetof(LightNode, intensity) == 32 && offsetof(LightNode, mean) == 48 &&
+              offsetof(LightNode, normal) == 64 && offsetof(LightNode, variance) == 80 &&
+              offsetof(LightNode, flags) == 92);
+static_assert(std::is_trivially_copyable_v<LightNode> && std::is_standard_layout_v<LightNode>);
+
+// Node index layout, by builder (`root`, `first_leaf` and `leaf_count` say it for any tree):
+// - radix, agglomerative: internal nodes [0, n-1), root 0; leaves [n-1, 2n-1). A single VPL
+//   is a tree of one leaf, node 0. Radix leaves are in sort-key order; agglomerative leaf
+//   n-1+i holds VPL i.
+// - perfect: heap. Node 0 is unused (an empty padding leaf), root 1, children of i are 2i and
+//   2i+1, leaves [L, 2L) with L = the power of two >= n: VPLs in sort-key order, then padding
+//   leaves (zero intensity, empty box, VPL index kNoNode). The nodes of level l are
+//   [2^l, 2^(l+1)).
+struct LightTree {
+  std::string kind;  // the builder: radix, perfect, agglomerative
+  std::vector<LightNode> nodes;
+  uint32_t root = kNoNode;  // kNoNode for an empty VPL set
+  uint32_t first_leaf = 0;
+  uint32_t leaf_count = 0;  // including padding leaves
+  uint32_t vpl_count = 0;
+  Bounds3 vpl_bounds;
+  float length_scale = 0.0f;  // D (see the top of this file)
+  float v_min = 0.0f;         // the thresholds the kSuitable flags were computed with
+  float sigma_max_abs = 0.0f; // sigma_max * D, in scene units
+
+  bool empty() const { return root == kNoNode; }
+  const LightNode& operator[](uint32_t i) const { return nodes[i]; }
+};
+
+struct LightTreeParams {
+  std::string tree = "radix";
+  float v_min = 0.5f;
+  float sigma_max = 0.005f;
+  std::string sigma_max_relative_to = "vpl_bounds";
+
+  template <class V>
+  void visit(V&& v) {
+    v("tree", tree, "light tree builder: radix (Karras 2012), perfect (heap layout), agglomerative (Walter 2005)");
+    v("v_min", v_min, "SST: minimum normal similarity of a node sampled as a substitute, in [0, 1]");
+    v("sigma_max", sigma_max,
+      "SST: maximum standard deviation along the node normal, as a fraction of D (paper 0.1 ~ 0.005)");
+    v("sigma_max_relative_to", sigma_max_relative_to,
+      "D for sigma_max: diagonal of vpl_bounds or scene_bounds");
+  }
+};
+
+// Throws sst::Error naming the first bad parameter.
+void validate(const LightTreeParams& params);
+
+// Wall time of each build stage, in milliseconds.
+struct LightTreeBuildStats {
+  double bounds_ms = 0.0;     // VPL bounds and input checks
+  double keys_ms = 0.0;       // sort keys
+  double sort_ms = 0.0;       // radix sort
+  double hierarchy_ms = 0.0;  // topology: Karras's node ranges, or the agglomerative pairing
+  double merge_ms = 0.0;      // bottom-up leaves, intensities, boxes and SST substitutes
+  double total_ms = 0.0;
+};
+
+// Scratch buffers of a build, kept between builds (one per frame) so that a rebuild of the same
+// size allocates nothing. Use one builder per thread.
+class LightTreeBuilder {
+ public:
+  LightTreeBuilder();
+  ~LightTreeBuilder();
+  LightTreeBuilder(LightTreeBuilder&&) noexcept;
+  LightTreeBuilder& operator=(LightTreeBuilder&&) noexcept;
+
+  // Builds into `tree`, reusing its node storage. `scene_bounds` is needed only with
+  // sigma_max_relative_to = scene_bounds. Throws sst::Error on bad parameters, too many VPLs
+  // or a bad VPL, before `tree` is touched.
+  void build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds, LightTree& tree,
+             LightTreeBuildStats* stats = nullptr);
+
+  struct Scratch;
+
+ private:
+  std::unique_ptr<Scratch> scratch_;
+};
+
+// The one factory: a tree over `vpls` by params.tree.
+LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,
+                           LightTreeBuildStats* stats = nullptr);
+
+// Longest root-to-leaf path in edges (0 for a single leaf); for reports and tests.
+uint32_t tree_height(const LightTree& tree);
+// Number of internal nodes flagged suitable.
+size_t count_suitable_internal(const LightTree& tree);
+
+}  // namespace sst

@@ -1,0 +1,69 @@
+// The perfect binary tree of RTSLC (Lin & Yuksel 2020) and the hybrid thesis (§4.2.2): the
+// sorted VPLs are the leaves of a complete heap, padded to a power of two with empty leaves, and
+// there is no topology to build: node i's children are 2i and 2i+1. Merged bottom-up; every
+// node depends only on its children, so the result does not depend on the thread count.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <bit>
+
+#include "core/lighttree/tree_builders.h"
+
+namespace sst {
+namespace {
+
+constexpr size_t kGrain = 1024;
+constexpr size_t kPrefetch = 16;
+// Leaves of one task's subtree: its nodes (2 x 96 bytes a leaf) stay in the core's cache from
+// the leaves up to the subtree's root, where a level-by-level pass over the whole array would
+// stream it through memory once per level.
+constexpr uint32_t kSubtreeLeaves = 2048;
+
+void fill_leaves(const VplSet& vpls, const uint32_t* ids, size_t n, uint32_t begin, uint32_t end,
+                 const SubstituteThresholds& thresholds, LightNode* leaves) {
+  for (size_t i = begin; i != end; ++i) {
+    // The VPLs are gathered in key order, i.e. from scattered addresses: fetch ahead.
+    if (i + kPrefetch < n) __builtin_prefetch(&vpls[ids[i + kPrefetch]]);
+    leaves[i] = i < n ? make_leaf(vpls[ids[i]], ids[i], thresholds) : make_padding_leaf(thresholds);
+  }
+}
+
+void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thresholds, LightNode* nodes) {
+  for (uint32_t i = begin; i != end; ++i)
+    merge_children(nodes[i], nodes[2 * i], 2 * i, nodes[2 * i + 1], 2 * i + 1, thresholds);
+}
+
+}  // namespace
+
+void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds,
+                        const LightTreeBuilder::Scratch& scratch, LightTree& tree) {
+  const size_t n = scratch.ids.size();
+  if (n == 0) {
+    tree.nodes.clear();
+    tree.root = kNoNode;
+    tree.first_leaf = tree.leaf_count = 0;
+    return;
+  }
+  const uint32_t leaves = std::bit_ceil(uint32_t(n));
+  tree.nodes.resize(2 * size_t(leaves));
+  tree.root = 1;
+  tree.first_leaf = leaves;
+  tree.leaf_count = leaves;
+  LightNode* nodes = tree.nodes.data();
+  nodes[0] = make_padding_leaf(thresholds);  // unused: keeps the heap's 1-based indices
+  // Subtrees of `sub` leaves in parallel, each from its leaves up to its root (subtree k's
+  // nodes of one level are consecutive: [(leaves + k sub) / 2^l, + sub / 2^l)) ...
+  const uint32_t sub = std::min(leaves, kSubtreeLeaves), subtrees = leaves / sub;
+  tbb::parallel_for(uint32_t(0), subtrees, [&](uint32_t k) {
+    fill_leaves(vpls, scratch.ids.data(), n, k * sub, (k + 1) * sub, thresholds, nodes + leaves);
+    for (uint32_t first = (leaves + k * sub) / 2, width = sub / 2; width >= 1; first /= 2, width /= 2)
+      merge_range(first, first + width, thresholds, nodes);
+  });
+  // ... then the few levels above them, [1, subtrees), level by level.
+  for (uint32_t level = subtrees / 2; level >= 1; level /= 2) {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(level, 2 * level, kGrain),
+                      [&](const tbb::blocked_range<uint32_t>& r) { merge_range(r.begin(), r.end(), thresholds, nodes); });
+  }
+}
+
+}  // namespace sst

@@ -1,0 +1,138 @@
+// The SST paper's builder (§3.3): a binary radix tree over the sorted keys (Karras 2012,
+// "Maximizing parallelism in the construction of BVHs, octrees, and k-d trees"), then a
+// bottom-up merge as the paper's GPU build does it: every leaf climbs towards the root; at each
+// internal node an atomic counter lets the first arriving child stop and the second merge the
+// node and go on. A node's value depends only on its children, not on which thread merged it,
+// so the tree is the same for any thread count.
+//
+// On a CPU a task processes a whole chunk of consecutive leaves, in order, and every internal
+// node covers a contiguous range of leaves. A node whose range lies inside the chunk is
+// complete exactly when the climb from its last leaf reaches it, so it needs no counter; only
+// nodes that straddle chunk borders (a few per level) use the atomic. A locked add per node
+// would serialise the memory accesses around it and stall every climb.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <bit>
+
+#include "core/lighttree/tree_builders.h"
+
+namespace sst {
+namespace {
+
+constexpr size_t kGrain = 1024;
+constexpr uint32_t kPrefetch = 16;
+constexpr uint32_t kMergeChunk = 2048;
+
+// Length of the longest common prefix of keys i and j; -1 when j is outside [0, n). Keys are
+// unique (they end in the VPL id), so the xor is never 0.
+struct Prefix {
+  const uint64_t* keys;
+  int n;
+  int operator()(int i, int j) const {
+    if (j < 0 || j >= n) return -1;
+    return std::countl_zero(keys[i] ^ keys[j]);
+  }
+};
+
+// Karras 2012, Figure 4: the children of internal node i, written into node i, and the
+// parents of those children.
+void build_internal_node(const Prefix& delta, int i, LightNode* nodes, uint32_t* parents, uint32_t* ranges) {
+  const int n = delta.n;
+  // Direction of the node's key range: towards the neighbour sharing the longer prefix.
+  int d = delta(i, i + 1) - delta(i, i - 1) >= 0 ? 1 : -1;
+  // Upper bound of the range's length, then its exact other end j by binary search.
+  int prefix_min = delta(i, i - d);
+  int length_max = 2;
+  while (delta(i, i + length_max * d) > prefix_min) length_max *= 2;
+  // The searches' comparisons are coin flips for the branch predictor: add by mask instead.
+  int length = 0;
+  for (int t = length_max / 2; t >= 1; t /= 2) length += t & -int(delta(i, i + (length + t) * d) > prefix_min);
+  int j = i + length * d;
+  // The split: the last position that shares more than the range's common prefix with i.
+  int prefix_node = delta(i, j);
+  int split = 0;
+  for (int t = length;;) {
+    t = (t + 1) / 2;
+    split += t & -int(delta(i, i + (split + t) * d) > prefix_node);
+    if (t <= 1) break;
+  }
+  int gamma = i + split * d + std::min(d, 0);
+  const uint32_t first_leaf = uint32_t(n - 1);
+  uint32_t left = std::min(i, j) == gamma ? first_leaf + gamma : uint32_t(gamma);
+  uint32_t right = std::max(i, j) == gamma + 1 ? first_leaf + gamma + 1 : uint32_t(gamma + 1);
+  nodes[i].left = left;
+  nodes[i].right = right;
+  parents[left] = uint32_t(i);
+  parents[right] = uint32_t(i);
+  ranges[2 * i] = uint32_t(std::min(i, j));
+  ranges[2 * i + 1] = uint32_t(std::max(i, j));
+}
+
+}  // namespace
+
+void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree) {
+  const size_t n = scratch.keys.size();
+  tree.nodes.resize(n == 0 ? 0 : 2 * n - 1);
+  tree.root = n == 0 ? kNoNode : 0;
+  tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
+  tree.leaf_count = uint32_t(n);
+  scratch.parents.resize(tree.nodes.size());
+  scratch.ranges.resize(2 * (n == 0 ? 0 : n - 1));
+  if (n == 0) return;
+  scratch.parents[0] = kNoNode;
+  Prefix delta{scratch.keys.data(), int(n)};
+  LightNode* nodes = tree.nodes.data();
+  uint32_t* parents = scratch.parents.data();
+  uint32_t* ranges = scratch.ranges.data();
+  tbb::parallel_for(tbb::blocked_range<int>(0, int(n) - 1, kGrain), [&](const tbb::blocked_range<int>& r) {
+    for (int i = r.begin(); i != r.end(); ++i) build_internal_node(delta, i, nodes, parents, ranges);
+  });
+}
+
+void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
+                      LightTree& tree) {
+  const size_t n = scratch.ids.size();
+  if (n == 0) return;
+  const size_t internal = n - 1;
+  if (scratch.visits_size < internal) {
+    scratch.visits = std::make_unique<std::atomic<uint32_t>[]>(internal);
+    scratch.visits_size = internal;
+  }
+  std::atomic<uint32_t>* visits = scratch.visits.get();
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, internal, 16 * kGrain), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) visits[i].store(0, std::memory_order_relaxed);
+  });
+  LightNode* nodes = tree.nodes.data();
+  const uint32_t* parents = scratch.parents.data();
+  const uint32_t* ranges = scratch.ranges.data();
+  const uint32_t* ids = scratch.ids.data();
+  const uint32_t first_leaf = tree.first_leaf;
+  // Chunks of at most kMergeChunk leaves: a chunk's leaves and internal nodes (2 x 96 bytes a
+  // leaf) then stay in the core's cache between the leaf loop and the climbs.
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(n), kMergeChunk), [&](const tbb::blocked_range<uint32_t>& r) {
+    const uint32_t chunk_begin = r.begin(), chunk_end = r.end();
+    // Leaves first, as a loop of independent iterations: the VPLs are gathered in key order,
+    // from scattered addresses, and the climbs below would stall on each of those loads.
+    for (uint32_t i = chunk_begin; i != chunk_end; ++i) {
+      if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[ids[i + kPrefetch]]);
+      nodes[first_leaf + i] = make_leaf(vpls[ids[i]], ids[i], thresholds);
+    }
+    for (uint32_t i = chunk_begin; i != chunk_end; ++i) {
+      for (uint32_t parent = parents[first_leaf + i]; parent != kNoNode; parent = parents[parent]) {
+        uint32_t lo = ranges[2 * parent], hi = ranges[2 * parent + 1];
+        if (lo >= chunk_begin && hi < chunk_end) {
+          if (hi != i) break;  // inside the chunk: complete once its last leaf is done
+        } else if (visits[parent].fetch_add(1, std::memory_order_acq_rel) == 0) {
+          // Straddling: the first child to arrive stops. acq_rel makes the sibling's subtree
+          // visible to the second, and this subtree to whoever arrives second above.
+          break;
+        }
+        LightNode& p = nodes[parent];
+        merge_children(p, nodes[p.left], p.left, nodes[p.right], p.right, thresholds);
+      }
+    }
+  }, tbb::simple_partitioner());
+}
+
+}  // namespace sst

@@ -1,0 +1,44 @@
+// The builders behind build_light_tree(), for light_tree.cpp and the benchmark. Each fills
+// `tree.nodes`, `root`, `first_leaf` and `leaf_count`; light_tree.cpp does the rest (bounds,
+// thresholds, parameter checks) and times the stages.
+#pragma once
+#include <atomic>
+#include <memory>
+#include <vector>
+
+#include "core/lighttree/light_tree.h"
+#include "core/lighttree/radix_sort.h"
+#include "core/lighttree/substitute.h"
+
+namespace sst {
+
+struct LightTreeBuilder::Scratch {
+  std::vector<uint64_t> keys;
+  std::vector<uint32_t> ids;  // after sorting: VPL index of each sorted position
+  RadixSortScratch sort;
+  std::vector<uint32_t> parents;                  // radix: parent of every node
+  std::vector<uint32_t> ranges;                   // radix: first and last leaf of internal node i at 2i, 2i+1
+  std::unique_ptr<std::atomic<uint32_t>[]> visits;  // radix: arrivals per internal node
+  size_t visits_size = 0;
+};
+
+// Keys of `vpls` over `vpl_bounds`, sorted: afterwards scratch.keys is ascending and
+// scratch.ids[i] is the VPL at sorted position i. Times the two stages into `stats`.
+void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
+               LightTreeBuildStats& stats);
+
+// Karras 2012 over the sorted keys (needs sort_vpls first), then the bottom-up merge.
+void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree);
+void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
+                      LightTree& tree);
+
+// Heap layout over the sorted VPLs (needs sort_vpls first), merged level by level.
+void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds,
+                        const LightTreeBuilder::Scratch& scratch, LightTree& tree);
+
+// Walter 2005 greedy pairing; O(n^2) time, so limited to kMaxAgglomerativeVpls.
+inline constexpr size_t kMaxAgglomerativeVpls = 20000;
+void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, float length_scale,
+                              LightTree& tree);
+
+}  // namespace sst

@@ -33,7 +33,10 @@ void FrameOutput::allocate(int width, int height) {
 }
 
 std::vector<Layer> FrameOutput::layers() const {
-  return {{"direct", direct}, {"indirect", indirect}, {"albedo", albedo}, {"normal", normal}, {"depth", depth}};
+  std::vector<Layer> all = {
+      {"direct", direct}, {"indirect", indirect}, {"albedo", albedo}, {"normal", normal}, {"depth", depth}};
+  all.insert(all.end(), extra_layers.begin(), extra_layers.end());
+  return all;
 }
 
 }  // namespace sst

@@ -28,6 +28,7 @@ struct FrameOutput {
   Image albedo;    // base colour at the first hit
   Image normal;    // shading normal at the first hit (world space, facing the camera)
   Image depth;     // distance from the camera to the first hit (0 where nothing is hit), 1 channel
+  std::vector<Layer> extra_layers;  // method-specific AOVs (variance, traversal depth, ...)
   RayCounters counters;
   nlohmann::json method_counters = nlohmann::json::object();  // method-specific (tree nodes visited, ...)
 

@@ -1,16 +1,34 @@
 #include "core/render/method_registry.h"
 
+#include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/many_light_method.h"
+#include "core/manylight/many_light_params.h"
+#include "core/manylight/uniform_sampler.h"
 #include "core/render/path_tracer.h"
 
 namespace sst {
 namespace {
-template <class P, class M>
-MethodInfo entry(const char* name, const char* description) {
-  return {name, description, param_table<P>(), [name](const nlohmann::json& j) -> std::unique_ptr<Method> {
+// An entry whose parameters P are read from JSON and handed to `make(P)`.
+template <class P, class Make>
+MethodInfo entry(const char* name, const char* description, Make make) {
+  return {name, description, param_table<P>(), [name, make](const nlohmann::json& j) -> std::unique_ptr<Method> {
             P params;
             params_from_json(params, j, std::string("method '") + name + "'");
-            return std::make_unique<M>(params);
+            return make(params);
           }};
+}
+
+template <class P, class M>
+MethodInfo entry(const char* name, const char* description) {
+  return entry<P>(name, description, [](const P& p) { return std::make_unique<M>(p); });
+}
+
+// A VPL method: the shared pipeline around the sampler S built from the parameters.
+template <class S>
+MethodInfo vpl_method(const char* name, const char* description) {
+  return entry<VplMethodParams>(name, description, [](const VplMethodParams& p) -> std::unique_ptr<Method> {
+    return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p), std::make_unique<S>());
+  });
 }
 }  // namespace
 
@@ -18,6 +36,8 @@ const std::vector<MethodInfo>& method_registry() {
   static const std::vector<MethodInfo> registry = {
       entry<PathTracerParams, PathTracer>(
           "pt", "unidirectional path tracer, next-event estimation with MIS; PT_n = --max-bounces n"),
+      vpl_method<ExhaustiveSampler>("exhaustive", "every VPL with its shadow ray: the VPL ground truth"),
+      vpl_method<UniformSampler>("uniform", "one VPL per indirect sample, drawn uniformly"),
   };
   return registry;
 }

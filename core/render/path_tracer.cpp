@@ -33,12 +33,13 @@ vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf,
 }  // namespace
 
 PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
-                      RayCounters& counters) {
+                      RayCounters& counters, Surface* first_hit) {
   PathSample out;
   ++counters.primary_rays;
   Hit hit = ctx.accel.intersect(ray);
   if (!hit.valid()) return out;
   Surface s = make_surface(ctx.scene, hit, ray.direction);
+  if (first_hit) *first_hit = s;
   out.albedo = s.base_color;
   out.normal = s.ns;
   out.depth = hit.t * glm::length(ray.direction);

@@ -8,6 +8,7 @@
 // | rr_min_bounces   | 3       | bounces before Russian roulette starts (never, if >= max_bounces) |
 #pragma once
 #include "core/render/method.h"
+#include "core/render/surface.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/util/params.h"
 
@@ -33,8 +34,11 @@ struct PathSample {
   float depth = 0.0f;
 };
 
+// `first_hit`, when given, receives the surface the camera ray hit (valid when the returned
+// depth is > 0): the many-light methods shade it with their own indirect estimate after taking
+// the direct light from here (max_bounces = 0), so direct light is computed one way for all.
 PathSample trace_path(const RenderContext& context, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
-                      RayCounters& counters);
+                      RayCounters& counters, Surface* first_hit = nullptr);
 
 class PathTracer final : public Method {
  public:

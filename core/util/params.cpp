@@ -1,6 +1,9 @@
 #include "core/util/params.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace sst {
 
@@ -26,6 +29,17 @@ std::string nearest_name(const std::string& name, const std::vector<std::string>
     }
   }
   return best;
+}
+
+double shortest_decimal(float value) {
+  if (!std::isfinite(value)) return double(value);
+  char text[32];
+  for (int digits = 6; digits <= 9; ++digits) {
+    std::snprintf(text, sizeof(text), "%.*g", digits, double(value));
+    double parsed = std::strtod(text, nullptr);
+    if (float(parsed) == value) return parsed;
+  }
+  return double(value);
 }
 
 std::string to_flag(const std::string& snake_name) {

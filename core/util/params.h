@@ -22,10 +22,19 @@ struct ParamInfo {
   nlohmann::json default_value;
 };
 
+// The shortest decimal that reads back as the same float, so 0.01f is written 0.01, not
+// 0.009999999776 (floats go to JSON through double).
+double shortest_decimal(float value);
+
 template <class P>
 nlohmann::json params_to_json(const P& params) {
   nlohmann::json j = nlohmann::json::object();
-  const_cast<P&>(params).visit([&](const char* name, auto& field, const char*) { j[name] = field; });
+  const_cast<P&>(params).visit([&](const char* name, auto& field, const char*) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(field)>, float>)
+      j[name] = shortest_decimal(field);
+    else
+      j[name] = field;
+  });
   return j;
 }
 
@@ -48,7 +57,9 @@ std::vector<ParamInfo> param_table() {
                        : std::is_floating_point_v<T>       ? "float"
                        : std::is_same_v<T, std::string>    ? "string"
                                                            : "value";
-    table.push_back({name, type, help, nlohmann::json(field)});
+    nlohmann::json value = field;
+    if constexpr (std::is_same_v<T, float>) value = shortest_decimal(field);
+    table.push_back({name, type, help, value});
   });
   return table;
 }

@@ -47,3 +47,15 @@ TEST(Params, NearestName) {
 
 }  // namespace
 }  // namespace sst
+
+namespace sst {
+namespace {
+TEST(Params, FloatsAreWrittenAsTheirShortestDecimal) {
+  EXPECT_EQ(shortest_decimal(0.01f), 0.01);
+  EXPECT_EQ(float(shortest_decimal(0.1f + 0.2f)), 0.1f + 0.2f);
+  RenderOptions o;
+  o.exposure = 0.3f;
+  EXPECT_EQ(params_to_json(o)["exposure"].dump(), "0.3");
+}
+}  // namespace
+}  // namespace sst

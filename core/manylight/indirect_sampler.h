@@ -1,0 +1,48 @@
+// The interface every many-light method implements: given the frame's VPLs (and whatever it
+// builds from them in prepare: a light tree, per-block cuts), estimate the indirect light at one
+// shading point. ManyLightMethod (many_light_method.h) does everything around it: VPL
+// generation, camera rays, direct light, accumulation, AOVs, counters, timings.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "core/material/brdf.h"
+#include "core/render/method.h"
+#include "core/rng/sobol_sampler.h"
+#include "core/vpl/vpl.h"
+
+namespace sst {
+
+// A camera ray's first hit, ready to shade.
+struct ShadingPoint {
+  vec3 p{0.0f};
+  vec3 ng{0.0f};  // geometric normal on the viewer's side
+  Frame frame;    // shading frame (frame.n = shading normal)
+  vec3 wo{0.0f};  // toward the viewer, in the shading frame
+  Brdf brdf;
+  int x = 0, y = 0;  // pixel
+};
+
+// The frame-wide inputs of sampling.
+struct ManyLightFrame {
+  const RenderContext& context;
+  const VplSet& vpls;
+  float clamp_distance;  // singularity clamp c (vpl_clamp.h)
+};
+
+struct IndirectEstimate {
+  vec3 value{0.0f};          // an estimate of sum_j contribution_j * visibility_j
+  uint32_t nodes_visited = 0;  // tree nodes visited to draw the sample(s)
+  uint32_t shadow_rays = 0;
+};
+
+class IndirectSampler {
+ public:
+  virtual ~IndirectSampler() = default;
+  // Per-frame preparation (tree build, cuts); `counters` receives method-specific counters.
+  virtual void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {}
+  // One indirect sample at `point`; thread-safe (called from many threads at once).
+  virtual IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
+                                    PixelSampler& sampler) const = 0;
+};
+
+}  // namespace sst

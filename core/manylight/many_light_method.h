@@ -1,0 +1,28 @@
+// The pipeline shared by every VPL method (exhaustive, uniform, slc, rtslc, sst, hybrid):
+//   VPL generation -> sampler.prepare (tree, cuts) -> per pixel sample: a jittered camera ray,
+//   the direct light exactly as `pt` computes it at its first hit, and one indirect estimate
+//   from the sampler at that hit.
+// The EXR's `indirect` layer is exactly the sampler's estimate (averaged over spp); the extra
+// layers are `indirect_variance` (the variance of that per-pixel mean, for z-tests) and
+// `traversal_depth` (tree nodes visited per indirect sample).
+#pragma once
+#include <memory>
+
+#include "core/manylight/indirect_sampler.h"
+#include "core/vpl/vpl_generator.h"
+
+namespace sst {
+
+class ManyLightMethod final : public Method {
+ public:
+  ManyLightMethod(VplParams vpl_params, nlohmann::json params, std::unique_ptr<IndirectSampler> sampler);
+  FrameOutput render(const RenderContext& context, StageTimer& timer) override;
+  nlohmann::json params() const override { return params_; }
+
+ private:
+  VplParams vpl_params_;
+  nlohmann::json params_;
+  std::unique_ptr<IndirectSampler> sampler_;
+};
+
+}  // namespace sst

@@ -1,0 +1,17 @@
+#include "core/manylight/uniform_sampler.h"
+
+#include "core/manylight/exhaustive_sampler.h"
+
+namespace sst {
+
+IndirectEstimate UniformSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,
+                                          PixelSampler& sampler) const {
+  IndirectEstimate e;
+  size_t n = frame.vpls.size();
+  if (n == 0) return e;
+  size_t j = std::min(n - 1, size_t(sampler.get1d() * float(n)));
+  e.value = shade_vpl(frame, point, frame.vpls[j], &e.shadow_rays) * float(n);
+  return e;
+}
+
+}  // namespace sst

@@ -6,6 +6,7 @@
 #include "core/render/path_tracer.h"
 #include "core/render/pixel_loop.h"
 #include "core/vpl/vpl_clamp.h"
+#include "core/vpl/vpl_ply.h"
 
 namespace sst {
 namespace {
@@ -46,6 +47,7 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
     return generate_vpls(ctx.scene, ctx.accel, ctx.lights, vpl_params_, ctx.options.seed, ctx.options.diffuse_only,
                          &vpl_stats);
   });
+  if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
   ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
   sampler_->prepare(mlf, timer, frame.method_counters);

@@ -8,6 +8,7 @@
 // | vpl_max_bounces  | 8       | surface hits per light path that deposit a VPL (1: one-bounce GI)   |
 // | vpl_min_bounces  | 3       | hits before Russian roulette (survival = max albedo component)       |
 // | clamp_fraction   | 0.01    | singularity clamp c = clamp_fraction * D, D = VPL-bounds diagonal    |
+// | export_vpls      | ""      | write the VPL set to this PLY file after generation (empty: don't)   |
 //
 // Path count. Path i always uses HashRng(seed, i, 0, kVplStream), so a path is a pure function of
 // (seed, i). Paths 0, 1, 2, ... are traced until `vpls` VPLs exist; the last path's surplus VPLs
@@ -28,6 +29,7 @@
 // With interpolated (shading) normals, the adjoint shading-normal correction of light tracing is
 // not applied: exact for flat-shaded geometry, a small bias on smooth-shaded meshes.
 #pragma once
+#include <string>
 #include <cstdint>
 #include <vector>
 
@@ -50,6 +52,7 @@ struct VplParams {
   int vpl_max_bounces = 8;
   int vpl_min_bounces = 3;
   float clamp_fraction = 0.01f;
+  std::string export_vpls;
 
   template <class V>
   void visit(V&& v) {
@@ -57,6 +60,7 @@ struct VplParams {
     v("vpl_max_bounces", vpl_max_bounces, "surface hits per light path that deposit a VPL");
     v("vpl_min_bounces", vpl_min_bounces, "light-path hits before Russian roulette may end a path");
     v("clamp_fraction", clamp_fraction, "VPL singularity clamp distance as a fraction of the VPL-bounds diagonal");
+    v("export_vpls", export_vpls, "write the VPL set to this PLY point cloud (position, normal, intensity)");
   }
 };
 

@@ -87,3 +87,21 @@ TEST(SstRender, ListMethodsShowsParameterTables) {
 
 }  // namespace
 }  // namespace sst
+
+#include "core/vpl/vpl_ply.h"
+
+namespace sst {
+namespace {
+TEST(SstRender, ExportsTheVplSetAsPly) {
+  auto dir = test::temp_dir();
+  auto ply = (dir / "vpls.ply").string();
+  auto r = test::run_command(render_cmd("--method uniform --vpls 300 --export-vpls " + ply + " --width 8 --spp 1 -q -o " +
+                                        (dir / "u.exr").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(read_vpls_ply(ply).size(), 300u);
+  nlohmann::json rec = read_json_file((dir / "u.json").string());
+  EXPECT_EQ(rec["method_params"]["vpls"], 300);
+  EXPECT_TRUE(rec["timings_ms"].contains("vpl_generation"));
+}
+}  // namespace
+}  // namespace sst

@@ -1,9 +1,14 @@
 #include "core/render/method_registry.h"
 
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/hybrid_sampler.h"
+#include "core/manylight/rtslc_sampler.h"
 #include "core/manylight/many_light_method.h"
 #include "core/manylight/many_light_params.h"
 #include "core/manylight/uniform_sampler.h"
+#include "core/manylight/slc_sampler.h"
+#include "core/manylight/sst_sampler.h"
+#include "core/manylight/tree_method_params.h"
 #include "core/render/path_tracer.h"
 
 namespace sst {
@@ -38,6 +43,29 @@ const std::vector<MethodInfo>& method_registry() {
           "pt", "unidirectional path tracer, next-event estimation with MIS; PT_n = --max-bounces n"),
       vpl_method<ExhaustiveSampler>("exhaustive", "every VPL with its shadow ray: the VPL ground truth"),
       vpl_method<UniformSampler>("uniform", "one VPL per indirect sample, drawn uniformly"),
+      entry<TreeMethodParams>("slc", "stochastic lightcuts (Yuksel 2019): one root-to-leaf light-tree walk per sample",
+                              [](const TreeMethodParams& p) -> std::unique_ptr<Method> {
+                                return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p),
+                                                                         std::make_unique<SlcSampler>(p.tree));
+                              }),
+      entry<SstMethodParams>("sst",
+                             "stochastic substitute trees (Tatzgern 2020): walk stops at a suitable node's Gaussian; biased",
+                             [](const SstMethodParams& p) -> std::unique_ptr<Method> {
+                               return std::make_unique<ManyLightMethod>(p.base.vpl, params_to_json(p),
+                                                                        std::make_unique<SstSampler>(p.base.tree, p.sst));
+                             }),
+      entry<RtslcParams>("rtslc",
+                         "real-time stochastic lightcuts (Lin & Yuksel 2020): per-block cuts, one walk per cut node",
+                         [](const RtslcParams& p) -> std::unique_ptr<Method> {
+                           return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
+                                                                    std::make_unique<RtslcSampler>(p));
+                         }),
+      entry<HybridParams>("hybrid",
+                          "shallow light cuts over an SST (thesis ch. 5): blended per-block cuts, substitutes; biased",
+                          [](const HybridParams& p) -> std::unique_ptr<Method> {
+                            return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
+                                                                     std::make_unique<HybridSampler>(p));
+                          }),
   };
   return registry;
 }

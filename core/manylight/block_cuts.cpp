@@ -1,0 +1,78 @@
+#include "core/manylight/block_cuts.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/render/surface.h"
+
+namespace sst {
+
+float cut_box_distance2_min(const Bounds3& b, vec3 x) {
+  vec3 d = glm::max(glm::max(b.lo - x, x - b.hi), vec3(0.0f));
+  return glm::dot(d, d);
+}
+
+float cut_box_distance2_max(const Bounds3& b, vec3 x) {
+  vec3 d = glm::max(glm::abs(b.lo - x), glm::abs(b.hi - x));
+  return glm::dot(d, d);
+}
+
+float cut_box_cos_bound(const Bounds3& b, vec3 x, vec3 n) {
+  float d2 = cut_box_distance2_min(b, x);
+  if (!(d2 > 0.0f)) return 1.0f;  // x in the box: every direction may occur
+  vec3 lo = b.lo - x, hi = b.hi - x;
+  // max over the box of n . (y - x): per axis the larger of the two ends.
+  float zmax = std::max(n.x * lo.x, n.x * hi.x) + std::max(n.y * lo.y, n.y * hi.y) + std::max(n.z * lo.z, n.z * hi.z);
+  if (!(zmax > 0.0f)) return 0.0f;
+  return std::min(1.0f, zmax / std::sqrt(d2));
+}
+
+namespace {
+struct Candidate {
+  uint32_t node;
+  float error, intensity;
+  bool operator<(const Candidate& o) const {
+    return error != o.error ? error < o.error : intensity < o.intensity;
+  }
+};
+}  // namespace
+
+void build_cut(const LightTree& tree, uint32_t max_nodes, const NodeError& error, std::vector<uint32_t>& cut) {
+  if (tree.empty() || max_nodes == 0) return;
+  // Cuts are at most 32 nodes: a linear scan beats a heap.
+  std::vector<Candidate> nodes;
+  auto make = [&](uint32_t i) {
+    const LightNode& n = tree[i];
+    float e = n.is_leaf() ? 0.0f : error(n);
+    return Candidate{i, std::isfinite(e) ? e : 0.0f, luminance(n.intensity)};
+  };
+  nodes.push_back(make(tree.root));
+  for (;;) {
+    if (nodes.size() >= max_nodes) break;
+    int best = -1;
+    for (size_t i = 0; i < nodes.size(); ++i)
+      if (!tree[nodes[i].node].is_leaf() && (best < 0 || nodes[best] < nodes[i])) best = int(i);
+    if (best < 0) break;  // only leaves left
+    const LightNode& n = tree[nodes[best].node];
+    uint32_t children[2] = {n.left, n.right};
+    nodes.erase(nodes.begin() + best);
+    // An empty child (perfect-tree padding) holds no VPL: leave it out of the cut.
+    for (uint32_t c : children)
+      if (!tree[c].empty()) nodes.push_back(make(c));
+  }
+  for (const Candidate& c : nodes) cut.push_back(c.node);
+}
+
+GBufferSample trace_gbuffer(const RenderContext& ctx, int x, int y) {
+  GBufferSample g;
+  Ray ray = ctx.camera.generate(float(x) + 0.5f, float(y) + 0.5f);
+  Hit hit = ctx.accel.intersect(ray);
+  if (!hit.valid()) return g;
+  Surface s = make_surface(ctx.scene, hit, ray.direction);
+  g.valid = true;
+  g.p = s.p;
+  g.n = s.ns;
+  return g;
+}
+
+}  // namespace sst

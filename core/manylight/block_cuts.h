@@ -1,0 +1,54 @@
+// Shared machinery of the per-block light-cut samplers (rtslc, hybrid; METHODS.md §3): box
+// geometry bounds at a shading point, a greedy cut builder, and a per-block G-buffer traced at
+// chosen pixels during prepare.
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/lighttree/light_tree.h"
+#include "core/manylight/indirect_sampler.h"
+
+namespace sst {
+
+// Squared distance from x to the box (0 inside). The box must not be empty.
+float cut_box_distance2_min(const Bounds3& b, vec3 x);
+// Squared distance from x to the farthest point of the box: sum over axes of
+// max(|lo - x|, |hi - x|)^2 (RTSLC's dmax^2).
+float cut_box_distance2_max(const Bounds3& b, vec3 x);
+// An upper bound of max(0, n . normalize(y - x)) over the points y of the box: 1 inside it,
+// else min(1, max_y n.(y - x) / dmin). The numerator is the exact maximum of a linear function
+// over the box and |y - x| >= dmin, so the bound holds for every y; it is cheap and tight for
+// far boxes, where it matters (near boxes get ~1 either way).
+float cut_box_cos_bound(const Bounds3& b, vec3 x, vec3 n);
+
+// A cut: node indices of a tree whose subtrees are disjoint and cover every VPL.
+// Greedy top-down build: start with {root}; repeatedly replace the splittable cut node of
+// largest priority by its non-empty children until the cut has `max_nodes` nodes or holds only
+// leaves. Priority is (error(node), lum(I)) compared lexicographically: nodes of zero error (seen
+// from the block's own pixel) are still split, largest intensity first, so that every cut of a
+// tree reaches the same size min(max_nodes, vpl_count) (the hybrid blends cuts index by index).
+// Leaves are never split. Appends to `cut`.
+using NodeError = std::function<float(const LightNode&)>;
+void build_cut(const LightTree& tree, uint32_t max_nodes, const NodeError& error, std::vector<uint32_t>& cut);
+
+// The first camera hit through a pixel's centre: the G-buffer entry a block's cut is built for.
+struct GBufferSample {
+  bool valid = false;  // false: the ray left the scene
+  vec3 p{0.0f};
+  vec3 n{0.0f};  // shading normal on the viewer's side
+};
+GBufferSample trace_gbuffer(const RenderContext& ctx, int x, int y);
+
+// The k x k block grid over the image.
+struct BlockGrid {
+  int block_size = 1;
+  int blocks_x = 0, blocks_y = 0;
+  BlockGrid() = default;
+  BlockGrid(int width, int height, int k)
+      : block_size(k), blocks_x((width + k - 1) / k), blocks_y((height + k - 1) / k) {}
+  size_t count() const { return size_t(blocks_x) * size_t(blocks_y); }
+  size_t index(int x, int y) const { return size_t(y / block_size) * size_t(blocks_x) + size_t(x / block_size); }
+};
+
+}  // namespace sst

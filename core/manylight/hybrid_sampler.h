@@ -1,0 +1,95 @@
+// `hybrid`: shallow light cuts over a stochastic substitute tree (the hybrid thesis, ch. 5;
+// METHODS.md §3). A perfect light tree with SST substitutes. Per k x k block a shallow cut of n
+// nodes is built at the block centre's G-buffer point by splitting the node of largest expected
+// contribution lum(I) G_avg / d^2. Each pixel blends the four nearest blocks' cuts index by
+// index (Algorithm 1): for cut index i it picks one of the four cuts with probability
+// proportional to bilinear weight x geometric similarity, and traverses from that cut's node i
+// with the same expected-contribution weights, stopping at a suitable SST node (sampled from its
+// Gaussian and shaded as a point light with the node's summed intensity) or a leaf. When all four
+// blocks are dissimilar it evaluates the mock cut: every node of tree level floor(log2 n).
+//
+// Weighting: each traversal's estimate is divided by the probability of the path from the
+// chosen cut node, so it is unbiased for that node's subtree (substitutes aside). The blend is
+// NOT unbiased: node i of one cut and node i of its neighbour cover different VPLs, so a pixel's
+// n nodes need not partition the VPLs (some are counted twice, some never). The thesis accepts
+// this bias for smooth block transitions, and so do we; together with the substitutes and the
+// expected-contribution weights (zero for a box entirely behind x but not a bound) the method is
+// biased by design.
+//
+// | parameter  | default | meaning                                                                    |
+// |------------|---------|----------------------------------------------------------------------------|
+// | (VplParams, LightTreeParams: tree must be perfect; v_min 0.7, sigma_max 0.015 = the thesis's 0.3) |
+// | block_size | 8       | k: pixels per block side; one cut per block                                |
+// | cut_size   | 8       | n: nodes per cut = traversals per sample (the per-pixel budget), 1..32     |
+// | n_min      | 0.9     | similarity: minimum dot product of a pixel's normal and a block centre's   |
+// | d_max      | 0.05    | similarity: maximum distance to a block centre's point, fraction of the scene diagonal |
+//
+// The thesis gives no values for n_min and d_max; 0.9 (~25 degrees) and 5% of the scene are ours.
+#pragma once
+#include <span>
+#include <vector>
+
+#include "core/lighttree/light_tree.h"
+#include "core/manylight/block_cuts.h"
+#include "core/manylight/indirect_sampler.h"
+#include "core/manylight/tree_method_params.h"
+
+namespace sst {
+
+struct HybridParams {
+  TreeMethodParams common;
+  int block_size = 8;
+  int cut_size = 8;
+  float n_min = 0.9f;
+  float d_max = 0.05f;
+
+  HybridParams() {
+    common.tree.tree = "perfect";
+    common.tree.v_min = 0.7f;       // thesis eq. 5.6
+    common.tree.sigma_max = 0.015f;  // thesis 0.3 in its scene units (light_tree.h)
+  }
+  template <class V>
+  void visit(V&& v) {
+    common.visit(v);
+    v("block_size", block_size, "pixels per side of a block sharing one shallow light cut");
+    v("cut_size", cut_size, "nodes per cut (1..32) = traversals per indirect sample");
+    v("n_min", n_min, "cut blending: a block counts only if its normal . the pixel's normal > n_min");
+    v("d_max", d_max, "cut blending: ... and its point is closer than d_max x the scene diagonal");
+  }
+};
+void validate(const HybridParams& params);  // sst::Error naming the bad parameter
+
+// The thesis's expected contribution of a node at x (normal n): lum(I) G_avg / max(d^2, c^2),
+// G_avg = mean over the 8 box corners of max(n . normalize(corner - x), 0), d = distance from x to
+// the box, c = the singularity clamp distance. 0 for an empty node.
+float hybrid_weight(const LightNode& node, vec3 x, vec3 n, float clamp_distance);
+
+class HybridSampler final : public IndirectSampler {
+ public:
+  explicit HybridSampler(const HybridParams& params);
+  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
+  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
+                            PixelSampler& sampler) const override;
+
+  const LightTree& tree() const { return tree_; }
+  std::span<const uint32_t> block_cut(size_t block) const {
+    return {cuts_.data() + block * size_t(params_.cut_size), cut_counts_[block]};
+  }
+  std::span<const uint32_t> mock_cut() const { return mock_cut_; }
+
+ private:
+  // One traversal from `from`; adds to `e`.
+  void traverse(const ManyLightFrame& frame, const ShadingPoint& point, uint32_t from, PixelSampler& sampler,
+                IndirectEstimate& e) const;
+
+  HybridParams params_;
+  LightTree tree_;
+  BlockGrid grid_;
+  std::vector<uint32_t> cuts_;  // block b: cuts_[b n, b n + cut_counts_[b]), in leaf order
+  std::vector<uint32_t> cut_counts_;
+  std::vector<GBufferSample> centres_;  // per block: the centre pixel's G-buffer
+  std::vector<uint32_t> mock_cut_;
+  float d_max_abs_ = 0.0f;
+};
+
+}  // namespace sst

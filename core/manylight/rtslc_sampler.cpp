@@ -1,0 +1,161 @@
+#include "core/manylight/rtslc_sampler.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/manylight/exhaustive_sampler.h"
+#include "core/rng/hash_rng.h"
+#include "core/util/error.h"
+
+namespace sst {
+
+void validate(const RtslcParams& p) {
+  validate(p.common.tree);
+  if (p.common.tree.tree != "perfect")
+    throw Error("rtslc: parameter 'tree' must be 'perfect' (RTSLC's heap-layout tree), got '" + p.common.tree.tree + "'");
+  if (p.block_size < 1) throw Error("rtslc: parameter 'block_size' must be >= 1");
+  if (p.cut_size < 1 || p.cut_size > 32) throw Error("rtslc: parameter 'cut_size' must be in 1..32");
+  if (p.interleave != 1 && p.interleave != 2 && p.interleave != 4)
+    throw Error("rtslc: parameter 'interleave' must be 1, 2 or 4");
+}
+
+namespace {
+
+float importance(const LightNode& c, vec3 x, vec3 n) {
+  return c.empty() ? 0.0f : luminance(c.intensity) * cut_box_cos_bound(c.bounds(), x, n);
+}
+
+// d1^2 IG0 / (d1^2 IG0 + d0^2 IG1); NaN when the denominator is 0 (the caller falls back).
+float distance_weight(float ig0, float ig1, float d0, float d1) {
+  float a = d1 * ig0, den = a + d0 * ig1;
+  return den > 0.0f ? a / den : NAN;
+}
+
+// (P_0, P_1) at an internal node; both 0 for a dead branch, where no VPL below can light x.
+std::pair<float, float> child_probabilities(const LightTree& tree, const LightNode& node, vec3 x, vec3 n) {
+  const LightNode &c0 = tree[node.left], &c1 = tree[node.right];
+  if (!(importance(c0, x, n) + importance(c1, x, n) > 0.0f)) return {0.0f, 0.0f};
+  float p0 = rtslc_child_probability(c0, c1, x, n);
+  return {p0, 1.0f - p0};
+}
+
+}  // namespace
+
+float rtslc_child_probability(const LightNode& c0, const LightNode& c1, vec3 x, vec3 n) {
+  if (c0.empty()) return 0.0f;
+  if (c1.empty()) return 1.0f;
+  float ig0 = importance(c0, x, n), ig1 = importance(c1, x, n);
+  if (!(ig0 + ig1 > 0.0f)) return 0.0f;  // dead branch: neither child can light x
+  float ratio = ig0 / (ig0 + ig1);
+  float dmin0 = cut_box_distance2_min(c0.bounds(), x), dmin1 = cut_box_distance2_min(c1.bounds(), x);
+  if (dmin0 == 0.0f && dmin1 == 0.0f) return ratio;  // x in both boxes: distance says nothing
+  float wmax = distance_weight(ig0, ig1, dmin0, dmin1);
+  float wmin = distance_weight(ig0, ig1, cut_box_distance2_max(c0.bounds(), x), cut_box_distance2_max(c1.bounds(), x));
+  // A zero denominator (a zero-distance side with zero importance) carries no distance
+  // information: use the importance ratio for that term.
+  if (!std::isfinite(wmax)) wmax = ratio;
+  if (!std::isfinite(wmin)) wmin = ratio;
+  return std::clamp(0.5f * (wmax + wmin), 0.0f, 1.0f);
+}
+
+TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler) {
+  TreeSample s;
+  uint32_t i = from;
+  float prob = 1.0f;
+  for (;;) {
+    ++s.nodes_visited;
+    const LightNode& node = tree[i];
+    if (node.is_leaf()) break;
+    auto [p0, p1] = child_probabilities(tree, node, x, n);
+    if (!(p0 + p1 > 0.0f)) return s;  // dead branch: no estimate, no shadow ray
+    float u = sampler.get1d();
+    bool left = u < p0;
+    prob *= left ? p0 : p1;
+    i = left ? node.left : node.right;
+  }
+  if (!(prob > 0.0f) || tree[i].empty()) return s;
+  s.node = i;
+  s.probability = prob;
+  return s;
+}
+
+double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n) {
+  double prob = 1.0;
+  uint32_t i = leaf;
+  while (i > from) {
+    uint32_t parent = i / 2;
+    const LightNode& p = tree[parent];
+    auto [p0, p1] = child_probabilities(tree, p, x, n);
+    prob *= (i == p.left) ? double(p0) : double(p1);
+    i = parent;
+  }
+  return i == from ? prob : 0.0;
+}
+
+float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance) {
+  if (node.empty()) return 0.0f;
+  float d2 = std::max(cut_box_distance2_min(node.bounds(), x), min_distance * min_distance);
+  return luminance(node.intensity) * cut_box_cos_bound(node.bounds(), x, n) / d2;
+}
+
+RtslcSampler::RtslcSampler(const RtslcParams& params) : params_(params) { validate(params_); }
+
+void RtslcSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
+  const RenderContext& ctx = frame.context;
+  tree_ = timer.time("tree_build", [&] { return build_light_tree(frame.vpls, params_.common.tree, &ctx.scene.bounds); });
+  const int k = params_.block_size;
+  const uint32_t m = uint32_t(params_.cut_size);
+  grid_ = BlockGrid(ctx.width, ctx.height, k);
+  cuts_.assign(grid_.count() * m, kNoNode);
+  cut_counts_.assign(grid_.count(), 0);
+  // RTSLC bounds the distance below at 0.001 of the scene size so that a node touching the
+  // pivot does not take every split.
+  const float min_distance = 0.001f * ctx.scene.bounds.diagonal();
+  timer.time("cuts", [&] {
+    tbb::parallel_for(size_t(0), grid_.count(), [&](size_t b) {
+      int bx = int(b % size_t(grid_.blocks_x)), by = int(b / size_t(grid_.blocks_x));
+      int x0 = bx * k, y0 = by * k;
+      int w = std::min(k, ctx.width - x0), h = std::min(k, ctx.height - y0);
+      HashRng rng(ctx.options.seed, uint32_t(b), 0, 0x52544C43u);  // "RTLC": the pivot stream
+      int px = x0 + std::min(int(rng.next() * float(w)), w - 1);
+      int py = y0 + std::min(int(rng.next() * float(h)), h - 1);
+      GBufferSample g = trace_gbuffer(ctx, px, py);
+      std::vector<uint32_t> cut;
+      cut.reserve(m);
+      build_cut(tree_, m, [&](const LightNode& node) {
+        // No pivot surface (a background pixel): split by intensity alone.
+        return g.valid ? rtslc_cut_error(node, g.p, g.n, min_distance) : luminance(node.intensity);
+      }, cut);
+      std::copy(cut.begin(), cut.end(), cuts_.begin() + b * m);
+      cut_counts_[b] = uint32_t(cut.size());
+    });
+  });
+  uint64_t total = 0;
+  for (uint32_t c : cut_counts_) total += c;
+  counters["rtslc"] = {{"tree_nodes", tree_.nodes.size()},
+                       {"tree_height", tree_.empty() ? 0 : tree_height(tree_)},
+                       {"blocks", grid_.count()},
+                       {"mean_cut_size", grid_.count() ? double(total) / double(grid_.count()) : 0.0}};
+}
+
+IndirectEstimate RtslcSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,
+                                        PixelSampler& sampler) const {
+  IndirectEstimate e;
+  if (tree_.empty()) return e;
+  const uint32_t r = uint32_t(params_.interleave), slots = r * r;
+  const uint32_t slot = (r * (uint32_t(point.y) % r) + uint32_t(point.x) % r + frame_index_) % slots;
+  std::span<const uint32_t> cut = block_cut(grid_.index(point.x, point.y));
+  for (uint32_t i = slot; i < cut.size(); i += slots) {
+    TreeSample s = rtslc_traverse(tree_, cut[i], point.p, point.frame.n, sampler);
+    e.nodes_visited += s.nodes_visited;
+    if (s.node == kNoNode) continue;
+    const Vpl& vpl = frame.vpls[tree_[s.node].vpl()];
+    e.value += shade_vpl(frame, point, vpl, &e.shadow_rays) * (float(slots) / s.probability);
+  }
+  return e;
+}
+
+}  // namespace sst

@@ -1,0 +1,81 @@
+// `rtslc`: Real-Time Stochastic Lightcuts (Lin & Yuksel 2020; METHODS.md §3). A perfect light
+// tree; per k x k pixel block a cut of M nodes built at a random pivot pixel; every pixel
+// traverses once from each cut node to a leaf (stochastic lightcuts) and sums the M one-VPL
+// estimates, each divided by its traversal probability. Unbiased (without interleaving, per
+// pixel; with interleaving, over each r x r tile of pixels).
+//
+// | parameter  | default | meaning                                                                   |
+// |------------|---------|---------------------------------------------------------------------------|
+// | (VplParams, LightTreeParams: see vpl_generator.h, light_tree.h; tree must be perfect)            |
+// | block_size | 8       | k: pixels per block side; one cut per block                               |
+// | cut_size   | 8       | M: nodes per cut, 1..32                                                   |
+// | interleave | 1       | r in {1, 2, 4}: pixel slot s of an r x r tile evaluates cut nodes i = s mod r^2, times r^2 |
+#pragma once
+#include <span>
+#include <vector>
+
+#include "core/lighttree/light_tree.h"
+#include "core/manylight/block_cuts.h"
+#include "core/manylight/indirect_sampler.h"
+#include "core/manylight/tree_method_params.h"
+
+namespace sst {
+
+struct RtslcParams {
+  TreeMethodParams common;
+  int block_size = 8;
+  int cut_size = 8;
+  int interleave = 1;
+
+  RtslcParams() { common.tree.tree = "perfect"; }  // the paper's tree; the only one allowed
+  template <class V>
+  void visit(V&& v) {
+    common.visit(v);
+    v("block_size", block_size, "pixels per side of a block sharing one light cut");
+    v("cut_size", cut_size, "nodes per light cut (1..32); one traversal from each per sample");
+    v("interleave", interleave, "interleaved sampling rate r (1, 2 or 4): each pixel of an r x r tile evaluates 1/r^2 of the cut");
+  }
+};
+void validate(const RtslcParams& params);  // sst::Error naming the bad parameter
+
+// P_0, the probability of descending into c0 rather than c1 at shading point x (normal n):
+// the mean of the weights with the minimum and the maximum distances (RTSLC). 0 for an empty c0;
+// 0 for both when neither can contribute (a dead branch).
+float rtslc_child_probability(const LightNode& c0, const LightNode& c1, vec3 x, vec3 n);
+
+struct TreeSample {
+  uint32_t node = kNoNode;  // the leaf reached; kNoNode: a dead branch
+  float probability = 0.0f;
+  uint32_t nodes_visited = 0;
+};
+// One stochastic descent from `from` to a leaf.
+TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler);
+// The exact probability that rtslc_traverse from `from` ends at `leaf` (0 if not below it).
+// Heap layout only (perfect tree).
+double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n);
+// The cut-building error of a node seen from x: lum(I) cosbound / max(dmin^2, min_distance^2).
+float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance);
+
+class RtslcSampler final : public IndirectSampler {
+ public:
+  explicit RtslcSampler(const RtslcParams& params);
+  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
+  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
+                            PixelSampler& sampler) const override;
+
+  const LightTree& tree() const { return tree_; }
+  const BlockGrid& grid() const { return grid_; }
+  std::span<const uint32_t> block_cut(size_t block) const {
+    return {cuts_.data() + block * size_t(params_.cut_size), cut_counts_[block]};
+  }
+
+ private:
+  RtslcParams params_;
+  LightTree tree_;
+  BlockGrid grid_;
+  std::vector<uint32_t> cuts_;        // block b: cuts_[b M, b M + cut_counts_[b])
+  std::vector<uint32_t> cut_counts_;
+  uint32_t frame_index_ = 0;  // interleaving offset; single frames use 0
+};
+
+}  // namespace sst

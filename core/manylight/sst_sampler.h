@@ -1,0 +1,87 @@
+// `sst`: stochastic substitute trees (Tatzgern et al. 2020, §4; METHODS.md §3). Biased by design.
+//
+// Per indirect sample:
+// 1. Lobe. A BRDF with a specular lobe picks the glossy lobe with probability
+//    Brdf::specular_probability(wo) (the path tracer's choice: Fresnel-weighted luminance of F0
+//    against the diffuse albedo's luminance, clamped to [0.1, 0.9]; 1 for a pure metal), else
+//    the diffuse lobe; a diffuse-only BRDF always takes the diffuse lobe. The paper chooses "by
+//    the magnitude of the material terms" without a formula; this is one. Each lobe shades with
+//    its own part of the BRDF (diffuse + specular = the BRDF, brdf.cpp) divided by the lobe's
+//    probability, so the two lobes together estimate the whole BRDF.
+// 2. Walk from the root, child i with probability w_i / (w_1 + w_2), w = M * G * I:
+//    I = lum(node intensity); G = 1 / max(d^2, eps^2), d = distance from x to the node's box,
+//    eps = the frame's singularity clamp distance (paper §4.1: a lower bound on the distance
+//    instead of SLC's inside-the-box rule, which loses colour bleeding from close VPLs);
+//    M = BRDF bound times the cosine bound over the box: diffuse lum(albedo)/pi; glossy the
+//    specular BRDF toward the box point closest to the mirror direction R (R itself when the
+//    ray x + tR hits the box; paper §4.1), plus a small floor so that no box above the surface
+//    gets weight 0 (which would drop its VPLs' highlights altogether). V = 1. A dead branch
+//    (w_1 + w_2 = 0) wastes the sample.
+// 3. Stop. Diffuse: at the first node flagged suitable (LightNode::suitable(): normal similarity
+//    v >= v_min and sigma_z <= sigma_max * D, light_tree.h) or a leaf. Glossy: at a leaf only
+//    (substitutes would blur highlights).
+// 4. Shade. A leaf: its VPL. A suitable internal node: a position drawn from the node's Gaussian
+//    (three normal deviates scaled by sqrt(variance.x), sqrt(variance.y), sigma_z in the frame
+//    Frame::from_normal(normal) about the mean), clamped into the node's box, shaded through
+//    shade_vpl as Vpl{position, node normal, node summed intensity}. Divided by the walk's
+//    probability and the lobe's.
+//
+// Parameters: those of TreeMethodParams (tree_method_params.h) and SstParams below. v_min and
+// sigma_max of LightTreeParams set which nodes are suitable (smaller v_min, larger sigma_max:
+// earlier stops, fewer nodes visited, more bias). With substitutes = false no internal node is
+// a stop, and sst is an unbiased (w.r.t. exhaustive) light-tree sampler with the weights above
+// (LightTreeParams caps v_min at 1, which does not exclude internal nodes of equal normals).
+//
+// | parameter   | default | meaning                                                        |
+// |-------------|---------|----------------------------------------------------------------|
+// | substitutes | true    | stop the diffuse walk at suitable nodes (false: leaves only)   |
+#pragma once
+#include "core/manylight/slc_sampler.h"
+
+namespace sst {
+
+struct SstParams {
+  bool substitutes = true;
+  template <class V>
+  void visit(V&& v) {
+    v("substitutes", substitutes, "SST: stop the diffuse walk at suitable nodes; false: leaves only (unbiased)");
+  }
+};
+
+struct SstMethodParams {
+  TreeMethodParams base;
+  SstParams sst;
+  template <class V>
+  void visit(V&& v) {
+    base.visit(v);
+    sst.visit(v);
+  }
+};
+
+enum class SstLobe { diffuse, glossy };
+
+// The weights of step 2 at `point` (whose brdf is the lobe's part of the BRDF); eps as above.
+ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe);
+double sst_node_weight(const LightNode& node, const ShadingPoint& point, float eps, SstLobe lobe);
+// The stop rule of step 3 (leaves only for the glossy lobe or without substitutes).
+StopRule sst_stop_rule(SstLobe lobe, bool substitutes = true);
+
+// The part of `brdf` that `lobe` shades.
+Brdf lobe_brdf(const Brdf& brdf, SstLobe lobe);
+
+// A light position from the node's Gaussian, clamped into its box; `normals` are three
+// standard normal deviates.
+vec3 substitute_position(const LightNode& node, vec3 normals);
+// Three standard normal deviates from two 2D uniforms (Box-Muller).
+vec3 standard_normals(vec2 a, vec2 b);
+
+class SstSampler final : public TreeSamplerBase {
+ public:
+  SstSampler(LightTreeParams params, SstParams sst) : TreeSamplerBase(std::move(params)), sst_(sst) {}
+  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override;
+
+ private:
+  SstParams sst_;
+};
+
+}  // namespace sst

@@ -13,7 +13,7 @@ void ParamFlags::add(CLI::App& app, const std::vector<ParamInfo>& table, const s
     std::string help = p.help + " [default: " + p.default_value.dump() + "]";
     if (p.type == "bool") {
       f.boolean = true;
-      f.option = app.add_flag(name)->description(help)->group(group);
+      f.option = app.add_flag(name + ",!--no-" + to_flag(p.name), f.boolean_value, help)->group(group);
     } else {
       f.option = app.add_option(name, f.text, help)->group(group)->type_name(
           p.type == "int" ? "INT" : p.type == "float" ? "FLOAT" : "TEXT");
@@ -29,7 +29,7 @@ nlohmann::json ParamFlags::given() const {
     try {
       size_t used = 0;
       if (f.boolean) {
-        j[name] = true;
+        j[name] = f.boolean_value;
       } else if (f.info.type == "int") {
         long long v = std::stoll(f.text, &used);
         if (used != f.text.size()) throw std::invalid_argument("trailing characters");

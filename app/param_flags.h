@@ -25,6 +25,7 @@ class ParamFlags {
     CLI::Option* option = nullptr;
     std::string text;
     bool boolean = false;
+    bool boolean_value = false;  // what a boolean flag was set to (--x, --x=false, --no-x)
   };
   std::map<std::string, Flag> flags_;
 };

@@ -118,7 +118,7 @@ IndirectEstimate SstSampler::estimate(const ManyLightFrame& frame, const Shading
   ShadingPoint lp = point;
   if (point.brdf.specular) lp.brdf = lobe_brdf(point.brdf, lobe);
 
-  TreeTraversal t = traverse_tree(tree_, sst_weights(lp, frame.clamp_distance, lobe), sst_stop_rule(lobe, sst_.substitutes),
+  TreeTraversal t = traverse_tree(tree_, sst_weights(lp, sst_.distance_floor * tree_.length_scale, lobe), sst_stop_rule(lobe, sst_.substitutes),
                                   [&] { return sampler.get1d(); });
   e.nodes_visited = t.nodes_visited;
   if (t.node == kNoNode) return e;

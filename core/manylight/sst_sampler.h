@@ -10,7 +10,7 @@
 //    probability, so the two lobes together estimate the whole BRDF.
 // 2. Walk from the root, child i with probability w_i / (w_1 + w_2), w = M * G * I:
 //    I = lum(node intensity); G = 1 / max(d^2, eps^2), d = distance from x to the node's box,
-//    eps = the frame's singularity clamp distance (paper §4.1: a lower bound on the distance
+//    eps = distance_floor * D (the tree's length scale) (paper §4.1: a lower bound on the distance
 //    instead of SLC's inside-the-box rule, which loses colour bleeding from close VPLs);
 //    M = BRDF bound times the cosine bound over the box: diffuse lum(albedo)/pi; glossy the
 //    specular BRDF toward the box point closest to the mirror direction R (R itself when the
@@ -42,9 +42,16 @@ namespace sst {
 
 struct SstParams {
   bool substitutes = true;
+  // The paper gives no value for its epsilon. Measured on the Cornell box (4096 VPLs, 16 spp,
+  // 128x128, indirect RMSE vs exhaustive): 0.01 -> 0.28, 0.05 -> 0.062, 0.1 -> 0.048,
+  // 0.2 -> 0.053, 0.5 -> 0.062 (slc: 0.062). Small floors let a box containing x outweigh its
+  // sibling by (d / eps)^2 whatever its VPLs contribute, which starves distant bright clusters.
+  float distance_floor = 0.1f;
   template <class V>
   void visit(V&& v) {
     v("substitutes", substitutes, "SST: stop the diffuse walk at suitable nodes; false: leaves only (unbiased)");
+    v("distance_floor", distance_floor,
+      "SST: lower bound of the distance in traversal weights (the paper's epsilon), fraction of the tree's D");
   }
 };
 

@@ -8,26 +8,10 @@
 #include "core/render/method_registry.h"
 #include "core/render/renderer.h"
 #include "core/scene/default_scene.h"
+#include "tests/core/manylight/many_light_test_util.h"
 
 namespace sst {
 namespace {
-
-RenderOptions small(const char* method, int spp, int width) {
-  RenderOptions o;
-  o.method = method;
-  o.width = o.height = width;
-  o.spp = spp;
-  o.diffuse_only = true;
-  o.seed = 3;
-  return o;
-}
-
-Image layer(const RenderResult& r, const std::string& name) {
-  for (const Layer& l : r.frame.layers())
-    if (l.name == name) return l.image;
-  ADD_FAILURE() << "no layer " << name;
-  return {};
-}
 
 double mean(const Image& im) {
   double s = 0.0;
@@ -58,7 +42,7 @@ TEST(HybridSampler, ExtremesGiveFiniteImages) {
   };
   for (nlohmann::json p : cases) {
     if (!p.contains("vpls")) p["vpls"] = 200;
-    RenderResult r = render_frame(scene, small("hybrid", 2, 12), p);
+    RenderResult r = render_frame(scene, test::small_options("hybrid", 2, 12), p);
     for (float v : r.frame.color.data) ASSERT_TRUE(std::isfinite(v)) << p.dump();
     EXPECT_EQ(r.frame.counters.nonfinite_samples, 0u) << p.dump();
   }
@@ -84,11 +68,11 @@ TEST(HybridSampler, MeanImageCloseToExhaustive) {
   // Biased by design (cut blending, substitutes): only the image mean is checked, loosely.
   Scene scene = load_default_scene();
   nlohmann::json vpl = {{"vpls", 400}};
-  double e = mean(layer(render_frame(scene, small("exhaustive", 16, 24), vpl), "indirect"));
+  double e = mean(test::frame_layer(render_frame(scene, test::small_options("exhaustive", 16, 24), vpl), "indirect"));
   for (float v_min : {0.7f, 1.0f}) {
     nlohmann::json p = vpl;
     p["v_min"] = v_min;
-    double h = mean(layer(render_frame(scene, small("hybrid", 64, 24), p), "indirect"));
+    double h = mean(test::frame_layer(render_frame(scene, test::small_options("hybrid", 64, 24), p), "indirect"));
     EXPECT_NEAR(h, e, 0.15 * e) << "v_min " << v_min;
   }
 }
@@ -98,8 +82,8 @@ TEST(HybridSampler, VisitsFewerNodesPerTraversalThanRtslc) {
   // cut-to-leaf walks. Both do cut_size = 8 traversals per sample, 8x8 blocks, 4096 VPLs.
   Scene scene = load_default_scene();
   nlohmann::json p = {{"vpls", 4096}, {"block_size", 8}, {"cut_size", 8}};
-  RenderResult h = render_frame(scene, small("hybrid", 4, 64), p);
-  RenderResult r = render_frame(scene, small("rtslc", 4, 64), p);
+  RenderResult h = render_frame(scene, test::small_options("hybrid", 4, 64), p);
+  RenderResult r = render_frame(scene, test::small_options("rtslc", 4, 64), p);
   double hn = h.frame.method_counters["nodes_visited_mean"].get<double>();
   double rn = r.frame.method_counters["nodes_visited_mean"].get<double>();
   std::printf("nodes visited per sample (8 traversals): hybrid %.2f, rtslc %.2f; per traversal %.2f vs %.2f\n", hn,

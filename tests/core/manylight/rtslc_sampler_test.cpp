@@ -11,6 +11,7 @@
 #include "core/rng/hash_rng.h"
 #include "core/scene/default_scene.h"
 #include "tests/stat_util.h"
+#include "tests/core/manylight/many_light_test_util.h"
 
 namespace sst {
 namespace {
@@ -110,37 +111,6 @@ TEST(RtslcCuts, DisjointAndCoverAllVpls) {
   }
 }
 
-RenderOptions small(const char* method, int spp, int width) {
-  RenderOptions o;
-  o.method = method;
-  o.width = o.height = width;
-  o.spp = spp;
-  o.diffuse_only = true;
-  o.seed = 3;
-  return o;
-}
-
-Image layer(const RenderResult& r, const std::string& name) {
-  for (const Layer& l : r.frame.layers())
-    if (l.name == name) return l.image;
-  ADD_FAILURE() << "no layer " << name;
-  return {};
-}
-
-// As in many_light_method_test.cpp: per-pixel z-test, Bonferroni at family-wise level ~1e-4.
-int z_test_failures(const Image& test, const Image& variance, const Image& expected, double z_max) {
-  int failures = 0;
-  for (size_t i = 0; i < test.data.size(); ++i) {
-    double diff = double(test.data[i]) - double(expected.data[i]);
-    double sd = std::sqrt(double(variance.data[i]));
-    if (sd == 0.0 ? std::abs(diff) > 1e-5 * (1.0 + std::abs(expected.data[i])) : std::abs(diff) / sd > z_max) {
-      ++failures;
-      ADD_FAILURE() << "pixel-channel " << i << ": " << test.data[i] << " vs " << expected.data[i] << ", sd " << sd;
-    }
-  }
-  return failures;
-}
-
 TEST(RtslcSampler, UnbiasedAgainstExhaustive) {
   // Few VPLs, many samples (see many_light_method_test.cpp). Same seed and spp: identical
   // camera jitter, so exhaustive is each pixel's expectation. 4096 spp, not 1024: RTSLC's
@@ -149,14 +119,14 @@ TEST(RtslcSampler, UnbiasedAgainstExhaustive) {
   // at 4096 and 16384: a tail, not a bias).
   Scene scene = load_default_scene();
   nlohmann::json vpl = {{"vpls", 24}, {"vpl_max_bounces", 3}};
-  RenderResult exhaustive = render_frame(scene, small("exhaustive", 4096, 16), vpl);
-  Image e = layer(exhaustive, "indirect");
+  RenderResult exhaustive = render_frame(scene, test::small_options("exhaustive", 4096, 16), vpl);
+  Image e = test::frame_layer(exhaustive, "indirect");
   for (int cut : {1, 2, 8}) {
     nlohmann::json p = vpl;
     p["cut_size"] = cut;
     p["block_size"] = 4;
-    RenderResult r = render_frame(scene, small("rtslc", 4096, 16), p);
-    EXPECT_EQ(z_test_failures(layer(r, "indirect"), layer(r, "indirect_variance"), e, 5.1), 0) << "cut " << cut;
+    RenderResult r = render_frame(scene, test::small_options("rtslc", 4096, 16), p);
+    EXPECT_EQ(test::z_test_failures(test::frame_layer(r, "indirect"), test::frame_layer(r, "indirect_variance"), e, 5.1), 0) << "cut " << cut;
     EXPECT_EQ(r.frame.counters.nonfinite_samples, 0u);
     EXPECT_GT(r.timer.ms("tree_build"), 0.0);
     EXPECT_GE(r.timer.ms("cuts"), 0.0);
@@ -171,7 +141,7 @@ TEST(RtslcSampler, ExtremesGiveFiniteImages) {
   };
   for (nlohmann::json p : cases) {
     if (!p.contains("vpls")) p["vpls"] = 200;
-    RenderResult r = render_frame(scene, small("rtslc", 2, 12), p);
+    RenderResult r = render_frame(scene, test::small_options("rtslc", 2, 12), p);
     for (float v : r.frame.color.data) ASSERT_TRUE(std::isfinite(v)) << p.dump();
     EXPECT_EQ(r.frame.counters.nonfinite_samples, 0u) << p.dump();
   }

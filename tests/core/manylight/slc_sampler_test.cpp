@@ -10,6 +10,7 @@
 #include "core/scene/default_scene.h"
 #include "core/vpl/vpl_shading.h"
 #include "tests/stat_util.h"
+#include "tests/core/manylight/many_light_test_util.h"
 
 namespace sst {
 namespace {
@@ -188,42 +189,14 @@ TEST(SlcSampler, DeadBranchAndSingleLeaf) {
   EXPECT_EQ(divide_by_probability(vec3(1.0f), 1e-300), vec3(0.0f));  // overflow: 0, not inf
 }
 
-RenderOptions small(const char* method, int spp, int width) {
-  RenderOptions o;
-  o.method = method;
-  o.width = o.height = width;
-  o.spp = spp;
-  o.diffuse_only = true;
-  o.seed = 3;
-  return o;
-}
-
-Image layer(const RenderResult& r, const std::string& name) {
-  for (const Layer& l : r.frame.layers())
-    if (l.name == name) return l.image;
-  ADD_FAILURE() << "no layer " << name;
-  return {};
-}
-
-// As in many_light_method_test.cpp: Bonferroni-corrected per-pixel z-test.
-int z_test_failures(const Image& test, const Image& variance, const Image& expected, double z_max) {
-  int failures = 0;
-  for (size_t i = 0; i < test.data.size(); ++i) {
-    double diff = double(test.data[i]) - double(expected.data[i]);
-    double sd = std::sqrt(double(variance.data[i]));
-    if (sd == 0.0 ? std::abs(diff) > 1e-6 * (1.0 + std::abs(expected.data[i])) : std::abs(diff) / sd > z_max) ++failures;
-  }
-  return failures;
-}
-
 TEST(SlcSampler, ConvergesToExhaustiveOnTheSameVpls) {
   // Few VPLs and many samples (see many_light_method_test.cpp): per-pixel means near normal.
   Scene scene = load_default_scene();
   nlohmann::json vpl = {{"vpls", 24}, {"vpl_max_bounces", 3}};
-  RenderResult slc = render_frame(scene, small("slc", 1024, 16), vpl);
-  RenderResult exhaustive = render_frame(scene, small("exhaustive", 1024, 16), vpl);
-  Image s = layer(slc, "indirect"), var = layer(slc, "indirect_variance");
-  EXPECT_EQ(z_test_failures(s, var, layer(exhaustive, "indirect"), 5.1), 0);
+  RenderResult slc = render_frame(scene, test::small_options("slc", 1024, 16), vpl);
+  RenderResult exhaustive = render_frame(scene, test::small_options("exhaustive", 1024, 16), vpl);
+  Image s = test::frame_layer(slc, "indirect"), var = test::frame_layer(slc, "indirect_variance");
+  EXPECT_EQ(test::z_test_failures(s, var, test::frame_layer(exhaustive, "indirect"), 5.1), 0);
   EXPECT_EQ(slc.frame.counters.nonfinite_samples, 0u);
   EXPECT_EQ(slc.frame.method_counters["tree"]["kind"], "radix");
   EXPECT_GT(slc.timer.ms("tree_build"), 0.0);
@@ -243,7 +216,7 @@ TEST(SlcSampler, RegisteredWithTreeParams) {
   }
   Scene scene = load_default_scene();
   for (const char* kind : {"perfect", "agglomerative"}) {
-    RenderResult r = render_frame(scene, small("slc", 2, 8), {{"vpls", 200}, {"tree", kind}});
+    RenderResult r = render_frame(scene, test::small_options("slc", 2, 8), {{"vpls", 200}, {"tree", kind}});
     EXPECT_EQ(r.frame.method_counters["tree"]["kind"], kind);
     for (float v : r.frame.color.data) ASSERT_TRUE(std::isfinite(v));
   }

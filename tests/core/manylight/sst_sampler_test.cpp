@@ -9,6 +9,7 @@
 #include "core/scene/default_scene.h"
 #include "core/vpl/vpl_shading.h"
 #include "tests/stat_util.h"
+#include "tests/core/manylight/many_light_test_util.h"
 
 namespace sst {
 namespace {
@@ -203,33 +204,6 @@ TEST(SstSampler, ExtremeParametersAndVplSetsGiveFiniteSamples) {
       }
 }
 
-RenderOptions small(const char* method, int spp, int width, bool diffuse_only = true) {
-  RenderOptions o;
-  o.method = method;
-  o.width = o.height = width;
-  o.spp = spp;
-  o.diffuse_only = diffuse_only;
-  o.seed = 3;
-  return o;
-}
-
-Image layer(const RenderResult& r, const std::string& name) {
-  for (const Layer& l : r.frame.layers())
-    if (l.name == name) return l.image;
-  ADD_FAILURE() << "no layer " << name;
-  return {};
-}
-
-int z_test_failures(const Image& test, const Image& variance, const Image& expected, double z_max) {
-  int failures = 0;
-  for (size_t i = 0; i < test.data.size(); ++i) {
-    double diff = double(test.data[i]) - double(expected.data[i]);
-    double sd = std::sqrt(double(variance.data[i]));
-    if (sd == 0.0 ? std::abs(diff) > 1e-6 * (1.0 + std::abs(expected.data[i])) : std::abs(diff) / sd > z_max) ++failures;
-  }
-  return failures;
-}
-
 double mean(const Image& im) {
   double s = 0.0;
   for (float v : im.data) s += v;
@@ -247,14 +221,14 @@ TEST(SstSampler, WithoutSubstitutesConvergesToExhaustive) {
   nlohmann::json vpl = {{"vpls", 24}, {"vpl_max_bounces", 3}};
   nlohmann::json sst_params = vpl;
   sst_params["substitutes"] = false;
-  RenderResult sst = render_frame(scene, small("sst", 65536, 8), sst_params);
-  RenderResult exhaustive = render_frame(scene, small("exhaustive", 65536, 8), vpl);
-  Image e = layer(exhaustive, "indirect");
-  EXPECT_EQ(z_test_failures(layer(sst, "indirect"), layer(sst, "indirect_variance"), e, 5.1), 0);
+  RenderResult sst = render_frame(scene, test::small_options("sst", 65536, 8), sst_params);
+  RenderResult exhaustive = render_frame(scene, test::small_options("exhaustive", 65536, 8), vpl);
+  Image e = test::frame_layer(exhaustive, "indirect");
+  EXPECT_EQ(test::z_test_failures(test::frame_layer(sst, "indirect"), test::frame_layer(sst, "indirect_variance"), e, 5.1), 0);
   EXPECT_EQ(sst.frame.counters.nonfinite_samples, 0u);
   // With substitutes (biased): report how far the image mean moves.
-  RenderResult biased = render_frame(scene, small("sst", 65536, 8), vpl);
-  double rel = mean(layer(biased, "indirect")) / mean(e) - 1.0;
+  RenderResult biased = render_frame(scene, test::small_options("sst", 65536, 8), vpl);
+  double rel = mean(test::frame_layer(biased, "indirect")) / mean(e) - 1.0;
   std::printf("sst with substitutes, 24 VPLs: indirect mean %+.4f relative to exhaustive\n", rel);
   EXPECT_LT(std::abs(rel), 0.5);
 }
@@ -265,7 +239,7 @@ TEST(SstSampler, RendersFiniteImagesForExtremes) {
     for (double v_min : {0.0, 1.0})
       for (double sigma_max : {0.0, 1e6}) {
         nlohmann::json p = {{"vpls", vpls}, {"v_min", v_min}, {"sigma_max", sigma_max}};
-        RenderResult r = render_frame(scene, small("sst", 2, 8, vpls != 300), p);
+        RenderResult r = render_frame(scene, test::small_options("sst", 2, 8, vpls != 300), p);
         EXPECT_EQ(r.frame.counters.nonfinite_samples, 0u) << p.dump();
         for (float v : r.frame.color.data) ASSERT_TRUE(std::isfinite(v)) << p.dump();
       }
@@ -274,8 +248,8 @@ TEST(SstSampler, RendersFiniteImagesForExtremes) {
 TEST(SstSampler, VisitsFewerNodesThanSlcAt10kVpls) {
   Scene scene = load_default_scene();
   nlohmann::json vpl = {{"vpls", 10000}};
-  RenderResult slc = render_frame(scene, small("slc", 4, 32), vpl);
-  RenderResult sst = render_frame(scene, small("sst", 4, 32), vpl);
+  RenderResult slc = render_frame(scene, test::small_options("slc", 4, 32), vpl);
+  RenderResult sst = render_frame(scene, test::small_options("sst", 4, 32), vpl);
   double n_slc = slc.frame.method_counters["nodes_visited_mean"].get<double>();
   double n_sst = sst.frame.method_counters["nodes_visited_mean"].get<double>();
   std::printf("nodes visited per sample at 10k VPLs (Cornell box): slc %.2f, sst %.2f (suitable internal %s)\n",

@@ -7,26 +7,6 @@
 
 namespace sst {
 
-float cut_box_distance2_min(const Bounds3& b, vec3 x) {
-  vec3 d = glm::max(glm::max(b.lo - x, x - b.hi), vec3(0.0f));
-  return glm::dot(d, d);
-}
-
-float cut_box_distance2_max(const Bounds3& b, vec3 x) {
-  vec3 d = glm::max(glm::abs(b.lo - x), glm::abs(b.hi - x));
-  return glm::dot(d, d);
-}
-
-float cut_box_cos_bound(const Bounds3& b, vec3 x, vec3 n) {
-  float d2 = cut_box_distance2_min(b, x);
-  if (!(d2 > 0.0f)) return 1.0f;  // x in the box: every direction may occur
-  vec3 lo = b.lo - x, hi = b.hi - x;
-  // max over the box of n . (y - x): per axis the larger of the two ends.
-  float zmax = std::max(n.x * lo.x, n.x * hi.x) + std::max(n.y * lo.y, n.y * hi.y) + std::max(n.z * lo.z, n.z * hi.z);
-  if (!(zmax > 0.0f)) return 0.0f;
-  return std::min(1.0f, zmax / std::sqrt(d2));
-}
-
 namespace {
 struct Candidate {
   uint32_t node;

@@ -11,17 +11,6 @@
 
 namespace sst {
 
-// Squared distance from x to the box (0 inside). The box must not be empty.
-float cut_box_distance2_min(const Bounds3& b, vec3 x);
-// Squared distance from x to the farthest point of the box: sum over axes of
-// max(|lo - x|, |hi - x|)^2 (RTSLC's dmax^2).
-float cut_box_distance2_max(const Bounds3& b, vec3 x);
-// An upper bound of max(0, n . normalize(y - x)) over the points y of the box: 1 inside it,
-// else min(1, max_y n.(y - x) / dmin). The numerator is the exact maximum of a linear function
-// over the box and |y - x| >= dmin, so the bound holds for every y; it is cheap and tight for
-// far boxes, where it matters (near boxes get ~1 either way).
-float cut_box_cos_bound(const Bounds3& b, vec3 x, vec3 n);
-
 // A cut: node indices of a tree whose subtrees are disjoint and cover every VPL.
 // Greedy top-down build: start with {root}; repeatedly replace the splittable cut node of
 // largest priority by its non-empty children until the cut has `max_nodes` nodes or holds only

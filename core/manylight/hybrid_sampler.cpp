@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
 #include "core/util/error.h"
 
@@ -31,7 +32,7 @@ float hybrid_weight(const LightNode& node, vec3 x, vec3 n, float clamp_distance)
     float len = glm::length(d);
     if (len > 0.0f) g += std::max(glm::dot(n, d) / len, 0.0f);
   }
-  float d2 = std::max(cut_box_distance2_min(node.bounds(), x), clamp_distance * clamp_distance);
+  float d2 = std::max(box_distance2_min(node.bounds(), x), clamp_distance * clamp_distance);
   float w = luminance(node.intensity) * (g * 0.125f) / d2;
   return std::isfinite(w) ? w : 0.0f;
 }
@@ -71,11 +72,11 @@ Vpl sample_substitute(const LightNode& node, PixelSampler& sampler) {
 
 }  // namespace
 
-HybridSampler::HybridSampler(const HybridParams& params) : params_(params) { validate(params_); }
+HybridSampler::HybridSampler(const HybridParams& params) : TreeSamplerBase(params.common.tree), params_(params) { validate(params_); }
 
 void HybridSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
   const RenderContext& ctx = frame.context;
-  tree_ = timer.time("tree_build", [&] { return build_light_tree(frame.vpls, params_.common.tree, &ctx.scene.bounds); });
+  TreeSamplerBase::prepare(frame, timer, counters);
   const int k = params_.block_size;
   const uint32_t n = uint32_t(params_.cut_size);
   grid_ = BlockGrid(ctx.width, ctx.height, k);

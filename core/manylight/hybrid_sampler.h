@@ -32,6 +32,7 @@
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
 #include "core/manylight/indirect_sampler.h"
+#include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
 
 namespace sst {
@@ -64,14 +65,13 @@ void validate(const HybridParams& params);  // sst::Error naming the bad paramet
 // the box, c = the singularity clamp distance. 0 for an empty node.
 float hybrid_weight(const LightNode& node, vec3 x, vec3 n, float clamp_distance);
 
-class HybridSampler final : public IndirectSampler {
+class HybridSampler final : public TreeSamplerBase {
  public:
   explicit HybridSampler(const HybridParams& params);
   void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                             PixelSampler& sampler) const override;
 
-  const LightTree& tree() const { return tree_; }
   std::span<const uint32_t> block_cut(size_t block) const {
     return {cuts_.data() + block * size_t(params_.cut_size), cut_counts_[block]};
   }
@@ -83,7 +83,6 @@ class HybridSampler final : public IndirectSampler {
                 IndirectEstimate& e) const;
 
   HybridParams params_;
-  LightTree tree_;
   BlockGrid grid_;
   std::vector<uint32_t> cuts_;  // block b: cuts_[b n, b n + cut_counts_[b]), in leaf order
   std::vector<uint32_t> cut_counts_;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
 #include "core/rng/hash_rng.h"
 #include "core/util/error.h"
@@ -25,7 +26,7 @@ void validate(const RtslcParams& p) {
 namespace {
 
 float importance(const LightNode& c, vec3 x, vec3 n) {
-  return c.empty() ? 0.0f : luminance(c.intensity) * cut_box_cos_bound(c.bounds(), x, n);
+  return c.empty() ? 0.0f : luminance(c.intensity) * box_cos_bound_linear(c.bounds(), x, n);
 }
 
 // d1^2 IG0 / (d1^2 IG0 + d0^2 IG1); NaN when the denominator is 0 (the caller falls back).
@@ -50,10 +51,10 @@ float rtslc_child_probability(const LightNode& c0, const LightNode& c1, vec3 x, 
   float ig0 = importance(c0, x, n), ig1 = importance(c1, x, n);
   if (!(ig0 + ig1 > 0.0f)) return 0.0f;  // dead branch: neither child can light x
   float ratio = ig0 / (ig0 + ig1);
-  float dmin0 = cut_box_distance2_min(c0.bounds(), x), dmin1 = cut_box_distance2_min(c1.bounds(), x);
+  float dmin0 = box_distance2_min(c0.bounds(), x), dmin1 = box_distance2_min(c1.bounds(), x);
   if (dmin0 == 0.0f && dmin1 == 0.0f) return ratio;  // x in both boxes: distance says nothing
   float wmax = distance_weight(ig0, ig1, dmin0, dmin1);
-  float wmin = distance_weight(ig0, ig1, cut_box_distance2_max(c0.bounds(), x), cut_box_distance2_max(c1.bounds(), x));
+  float wmin = distance_weight(ig0, ig1, box_distance2_max(c0.bounds(), x), box_distance2_max(c1.bounds(), x));
   // A zero denominator (a zero-distance side with zero importance) carries no distance
   // information: use the importance ratio for that term.
   if (!std::isfinite(wmax)) wmax = ratio;
@@ -97,15 +98,15 @@ double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t lea
 
 float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance) {
   if (node.empty()) return 0.0f;
-  float d2 = std::max(cut_box_distance2_min(node.bounds(), x), min_distance * min_distance);
-  return luminance(node.intensity) * cut_box_cos_bound(node.bounds(), x, n) / d2;
+  float d2 = std::max(box_distance2_min(node.bounds(), x), min_distance * min_distance);
+  return luminance(node.intensity) * box_cos_bound_linear(node.bounds(), x, n) / d2;
 }
 
-RtslcSampler::RtslcSampler(const RtslcParams& params) : params_(params) { validate(params_); }
+RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.common.tree), params_(params) { validate(params_); }
 
 void RtslcSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
   const RenderContext& ctx = frame.context;
-  tree_ = timer.time("tree_build", [&] { return build_light_tree(frame.vpls, params_.common.tree, &ctx.scene.bounds); });
+  TreeSamplerBase::prepare(frame, timer, counters);
   const int k = params_.block_size;
   const uint32_t m = uint32_t(params_.cut_size);
   grid_ = BlockGrid(ctx.width, ctx.height, k);

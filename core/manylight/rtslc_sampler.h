@@ -17,6 +17,7 @@
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
 #include "core/manylight/indirect_sampler.h"
+#include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
 
 namespace sst {
@@ -56,14 +57,13 @@ double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t lea
 // The cut-building error of a node seen from x: lum(I) cosbound / max(dmin^2, min_distance^2).
 float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance);
 
-class RtslcSampler final : public IndirectSampler {
+class RtslcSampler final : public TreeSamplerBase {
  public:
   explicit RtslcSampler(const RtslcParams& params);
   void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                             PixelSampler& sampler) const override;
 
-  const LightTree& tree() const { return tree_; }
   const BlockGrid& grid() const { return grid_; }
   std::span<const uint32_t> block_cut(size_t block) const {
     return {cuts_.data() + block * size_t(params_.cut_size), cut_counts_[block]};
@@ -71,7 +71,6 @@ class RtslcSampler final : public IndirectSampler {
 
  private:
   RtslcParams params_;
-  LightTree tree_;
   BlockGrid grid_;
   std::vector<uint32_t> cuts_;        // block b: cuts_[b M, b M + cut_counts_[b])
   std::vector<uint32_t> cut_counts_;

@@ -2,17 +2,11 @@
 
 #include <cmath>
 
+#include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
 
 namespace sst {
 namespace {
-
-bool inside(const Bounds3& b, vec3 x) {
-  return x.x >= b.lo.x && x.x <= b.hi.x && x.y >= b.lo.y && x.y <= b.hi.y && x.z >= b.lo.z && x.z <= b.hi.z;
-}
-
-// Smallest |t| over [lo, hi]: 0 when the interval straddles 0.
-float min_abs(float lo, float hi) { return lo <= 0.0f && hi >= 0.0f ? 0.0f : std::min(std::abs(lo), std::abs(hi)); }
 
 void collect_stops(const LightTree& tree, const ChildWeights& weights, const StopRule& stop, uint32_t i, double p,
                    std::vector<double>& out) {
@@ -29,29 +23,6 @@ void collect_stops(const LightTree& tree, const ChildWeights& weights, const Sto
 }
 
 }  // namespace
-
-float slc_box_cos_bound(const Bounds3& box, vec3 x, vec3 n) {
-  if (box.empty()) return 0.0f;
-  if (inside(box, x)) return 1.0f;
-  Frame f = Frame::from_normal(n);
-  vec3 lo(kInf), hi(-kInf);
-  for (int c = 0; c < 8; ++c) {
-    vec3 corner((c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y, (c & 4) ? box.hi.z : box.lo.z);
-    vec3 l = f.to_local(corner - x);
-    lo = glm::min(lo, l);
-    hi = glm::max(hi, l);
-  }
-  if (!(hi.z > 0.0f)) return 0.0f;  // wholly below the tangent plane
-  float dx = min_abs(lo.x, hi.x), dy = min_abs(lo.y, hi.y);
-  float len2 = dx * dx + dy * dy + hi.z * hi.z;
-  return len2 > 0.0f ? std::min(1.0f, hi.z / std::sqrt(len2)) : 1.0f;
-}
-
-float slc_box_distance2(const Bounds3& box, vec3 x) {
-  if (box.empty()) return kInf;
-  vec3 d = glm::max(glm::max(box.lo - x, x - box.hi), vec3(0.0f));
-  return glm::dot(d, d);
-}
 
 TreeTraversal traverse_tree(const LightTree& tree, const ChildWeights& weights, const StopRule& stop,
                             const std::function<float()>& u) {
@@ -96,33 +67,14 @@ std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& 
   bool near = false;
   for (int k = 0; k < 2; ++k) {
     const LightNode& n = *c[k];
-    base[k] = n.empty() ? 0.0 : double(luminance(n.intensity)) * slc_box_cos_bound(n.bounds(), point.p, point.frame.n);
-    d2[k] = n.empty() ? 0.0 : slc_box_distance2(n.bounds(), point.p);
+    base[k] = n.empty() ? 0.0 : double(luminance(n.intensity)) * box_cos_bound(n.bounds(), point.p, point.frame.n);
+    d2[k] = n.empty() ? 0.0 : box_distance2_min(n.bounds(), point.p);
     float diag = n.bounds().diagonal();
     // <= rather than <: a point box (diag 0) at x itself must not divide by 0.
     if (!n.empty() && d2[k] <= double(diag) * double(diag)) near = true;
   }
   if (near) return {base[0], base[1]};
   return {base[0] > 0.0 ? base[0] / d2[0] : 0.0, base[1] > 0.0 ? base[1] / d2[1] : 0.0};
-}
-
-TreeSamplerBase::TreeSamplerBase(LightTreeParams params) : params_(std::move(params)) { validate(params_); }
-
-void TreeSamplerBase::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
-  LightTreeBuildStats stats;
-  const Bounds3& scene_bounds = frame.context.scene.bounds;
-  tree_ = timer.time("tree_build", [&] { return build_light_tree(frame.vpls, params_, &scene_bounds, &stats); });
-  counters["tree"] = {{"kind", tree_.kind},
-                      {"nodes", tree_.nodes.size()},
-                      {"height", tree_height(tree_)},
-                      {"suitable_internal", count_suitable_internal(tree_)},
-                      {"length_scale", tree_.length_scale},
-                      {"bounds_ms", stats.bounds_ms},
-                      {"keys_ms", stats.keys_ms},
-                      {"sort_ms", stats.sort_ms},
-                      {"hierarchy_ms", stats.hierarchy_ms},
-                      {"merge_ms", stats.merge_ms},
-                      {"total_ms", stats.total_ms}};
 }
 
 IndirectEstimate SlcSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,

@@ -7,8 +7,8 @@
 // meaningless there and would starve the sibling. Unbiased w.r.t. exhaustive: a weight is 0
 // only when every VPL below contributes 0 (no intensity, or the box is behind the surface).
 //
-// Also the shared tree-walk machinery of the tree samplers (sst reuses it): the box bounds, a
-// generic traversal and the exact stop-node probabilities for tests.
+// Also the shared tree-walk machinery of the tree samplers (sst reuses it): a generic traversal
+// and the exact stop-node probabilities for tests.
 #pragma once
 #include <array>
 #include <functional>
@@ -16,15 +16,10 @@
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/indirect_sampler.h"
 #include "core/manylight/tree_method_params.h"
+#include "core/manylight/tree_sampler_base.h"
 
 namespace sst {
 
-// Upper bound of max(0, n . normalize(y - x)) over the points y of `box`; 1 when x is inside.
-// Conservative (Walter 2005): the box's corners are taken to n's frame and the bound is that of
-// the AABB of the transformed corners, so it is never below the true maximum.
-float slc_box_cos_bound(const Bounds3& box, vec3 x, vec3 n);
-// Squared distance from x to the box (0 inside).
-float slc_box_distance2(const Bounds3& box, vec3 x);
 
 // Child weights (w_left, w_right) of an internal node at a shading point.
 using ChildWeights = std::function<std::array<double, 2>(const LightNode& left, const LightNode& right)>;
@@ -56,17 +51,6 @@ inline ChildWeights slc_weights(const ShadingPoint& point) {
 inline bool stop_at_leaves(const LightNode& node) { return node.is_leaf(); }
 
 // Builds the frame's tree in prepare: stage "tree_build", counters["tree"] = kind and stats.
-class TreeSamplerBase : public IndirectSampler {
- public:
-  explicit TreeSamplerBase(LightTreeParams params);
-  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
-  const LightTree& tree() const { return tree_; }
-
- protected:
-  LightTreeParams params_;
-  LightTree tree_;
-};
-
 class SlcSampler final : public TreeSamplerBase {
  public:
   explicit SlcSampler(LightTreeParams params) : TreeSamplerBase(std::move(params)) {}

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
 
 namespace sst {
@@ -38,7 +39,7 @@ vec3 glossy_direction(vec3 x, vec3 r, const Bounds3& b) {
 }
 
 double material_bound(const LightNode& node, const ShadingPoint& point, SstLobe lobe) {
-  float cos_bound = slc_box_cos_bound(node.bounds(), point.p, point.frame.n);
+  float cos_bound = box_cos_bound(node.bounds(), point.p, point.frame.n);
   if (!(cos_bound > 0.0f)) return 0.0;
   if (lobe == SstLobe::diffuse) return double(luminance(point.brdf.diffuse)) * kInvPiF * cos_bound;
   vec3 wo_world = point.frame.to_world(point.wo);
@@ -60,7 +61,7 @@ double sst_node_weight(const LightNode& node, const ShadingPoint& point, float e
   if (!(m > 0.0)) return 0.0;
   // eps = 0 would divide by 0 at a box containing x: floor it far below any scene scale.
   double eps2 = std::max(double(eps) * double(eps), 1e-30);
-  double g = 1.0 / std::max(double(slc_box_distance2(node.bounds(), point.p)), eps2);
+  double g = 1.0 / std::max(double(box_distance2_min(node.bounds(), point.p)), eps2);
   return m * g * intensity;
 }
 

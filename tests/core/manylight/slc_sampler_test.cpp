@@ -3,6 +3,7 @@
 // exhaustive on the same VPL set (per-pixel z-test).
 #include <gtest/gtest.h>
 
+#include "core/lighttree/box_bounds.h"
 #include "core/manylight/slc_sampler.h"
 #include "core/render/method_registry.h"
 #include "core/render/renderer.h"
@@ -161,14 +162,14 @@ TEST(SlcSampler, CosineBoundIsConservative) {
     Bounds3 box{glm::min(a, b), glm::max(a, b)};
     vec3 x = 2.0f * vec3(rng.next(), rng.next(), rng.next()) - 0.5f;
     vec3 n = random_unit(rng);
-    float bound = slc_box_cos_bound(box, x, n);
+    float bound = box_cos_bound(box, x, n);
     ASSERT_TRUE(bound >= 0.0f && bound <= 1.0f);
     for (int k = 0; k < 20; ++k) {
       vec3 y = box.lo + (box.hi - box.lo) * vec3(rng.next(), rng.next(), rng.next());
       float len = glm::length(y - x);
       if (len > 0.0f) { ASSERT_LE(glm::dot(n, (y - x) / len), bound + 1e-5f); }
     }
-    if (!(bound > 0.0f)) { EXPECT_GT(slc_box_distance2(box, x), 0.0f); }
+    if (!(bound > 0.0f)) { EXPECT_GT(box_distance2_min(box, x), 0.0f); }
   }
 }
 

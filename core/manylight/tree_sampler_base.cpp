@@ -1,0 +1,24 @@
+#include "core/manylight/tree_sampler_base.h"
+
+namespace sst {
+
+TreeSamplerBase::TreeSamplerBase(LightTreeParams params) : tree_params_(std::move(params)) { validate(tree_params_); }
+
+void TreeSamplerBase::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
+  LightTreeBuildStats stats;
+  const Bounds3& scene_bounds = frame.context.scene.bounds;
+  tree_ = timer.time("tree_build", [&] { return build_light_tree(frame.vpls, tree_params_, &scene_bounds, &stats); });
+  counters["tree"] = {{"kind", tree_.kind},
+                      {"nodes", tree_.nodes.size()},
+                      {"height", tree_height(tree_)},
+                      {"suitable_internal", count_suitable_internal(tree_)},
+                      {"length_scale", tree_.length_scale},
+                      {"bounds_ms", stats.bounds_ms},
+                      {"keys_ms", stats.keys_ms},
+                      {"sort_ms", stats.sort_ms},
+                      {"hierarchy_ms", stats.hierarchy_ms},
+                      {"merge_ms", stats.merge_ms},
+                      {"total_ms", stats.total_ms}};
+}
+
+}  // namespace sst

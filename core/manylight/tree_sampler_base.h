@@ -1,0 +1,21 @@
+// What every light-tree sampler (slc, sst, rtslc, hybrid) shares: its tree parameters and the
+// per-frame build of the tree, timed as stage "tree_build", with the tree's statistics recorded
+// as counters["tree"] so that every tree method's record can be compared.
+#pragma once
+#include "core/lighttree/light_tree.h"
+#include "core/manylight/indirect_sampler.h"
+
+namespace sst {
+
+class TreeSamplerBase : public IndirectSampler {
+ public:
+  explicit TreeSamplerBase(LightTreeParams tree_params);
+  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
+  const LightTree& tree() const { return tree_; }
+
+ protected:
+  LightTreeParams tree_params_;
+  LightTree tree_;
+};
+
+}  // namespace sst

@@ -1,5 +1,7 @@
 #include "core/manylight/block_cuts.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -53,6 +55,40 @@ GBufferSample trace_gbuffer(const RenderContext& ctx, int x, int y) {
   g.p = s.p;
   g.n = s.ns;
   return g;
+}
+
+double BlockCuts::mean_size() const {
+  uint64_t total = 0;
+  for (uint32_t c : sizes) total += c;
+  return sizes.empty() ? 0.0 : double(total) / double(sizes.size());
+}
+
+BlockCuts build_block_cuts(const RenderContext& ctx, const LightTree& tree, int block_size, uint32_t max_size,
+                           const GuidePixel& guide_pixel, const GuidedError& error, const CutOrder& order) {
+  BlockCuts cuts;
+  cuts.grid = BlockGrid(ctx.width, ctx.height, block_size);
+  cuts.max_size = max_size;
+  cuts.nodes.assign(cuts.grid.count() * max_size, kNoNode);
+  cuts.sizes.assign(cuts.grid.count(), 0);
+  cuts.guides.assign(cuts.grid.count(), {});
+  tbb::parallel_for(size_t(0), cuts.grid.count(), [&](size_t b) {
+    BlockRect r;
+    r.index = b;
+    r.x0 = int(b % size_t(cuts.grid.blocks_x)) * block_size;
+    r.y0 = int(b / size_t(cuts.grid.blocks_x)) * block_size;
+    r.w = std::min(block_size, ctx.width - r.x0);
+    r.h = std::min(block_size, ctx.height - r.y0);
+    glm::ivec2 pixel = guide_pixel(r);
+    const GBufferSample g = trace_gbuffer(ctx, pixel.x, pixel.y);
+    cuts.guides[b] = g;
+    std::vector<uint32_t> cut;
+    cut.reserve(max_size);
+    build_cut(tree, max_size, [&](const LightNode& node) { return error(node, g); }, cut);
+    if (order) order(cut);
+    std::copy(cut.begin(), cut.end(), cuts.nodes.begin() + b * max_size);
+    cuts.sizes[b] = uint32_t(cut.size());
+  });
+  return cuts;
 }
 
 }  // namespace sst

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
@@ -39,5 +40,34 @@ struct BlockGrid {
   size_t count() const { return size_t(blocks_x) * size_t(blocks_y); }
   size_t index(int x, int y) const { return size_t(y / block_size) * size_t(blocks_x) + size_t(x / block_size); }
 };
+
+// A block's pixels, clipped to the image.
+struct BlockRect {
+  size_t index = 0;
+  int x0 = 0, y0 = 0, w = 0, h = 0;
+};
+
+// The cut of every block: block b's cut is nodes[b max_size, b max_size + sizes[b]), built for
+// the G-buffer sample guides[b].
+struct BlockCuts {
+  BlockGrid grid;
+  uint32_t max_size = 0;
+  std::vector<uint32_t> nodes;
+  std::vector<uint32_t> sizes;
+  std::vector<GBufferSample> guides;
+  std::span<const uint32_t> cut(size_t block) const {
+    return {nodes.data() + block * size_t(max_size), sizes[block]};
+  }
+  double mean_size() const;
+};
+
+// Builds every block's cut in parallel: traces the G-buffer at the pixel `guide_pixel` picks in
+// the block, builds the cut with `error` seen from that sample, then lets `order` (if given)
+// reorder it. What differs between rtslc and the hybrid is only these three choices.
+using GuidePixel = std::function<glm::ivec2(const BlockRect&)>;
+using GuidedError = std::function<float(const LightNode&, const GBufferSample&)>;
+using CutOrder = std::function<void(std::vector<uint32_t>&)>;
+BlockCuts build_block_cuts(const RenderContext& ctx, const LightTree& tree, int block_size, uint32_t max_size,
+                           const GuidePixel& guide_pixel, const GuidedError& error, const CutOrder& order = {});
 
 }  // namespace sst

@@ -77,31 +77,19 @@ HybridSampler::HybridSampler(const HybridParams& params) : TreeSamplerBase(param
 void HybridSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
   const RenderContext& ctx = frame.context;
   TreeSamplerBase::prepare(frame, timer, counters);
-  const int k = params_.block_size;
   const uint32_t n = uint32_t(params_.cut_size);
-  grid_ = BlockGrid(ctx.width, ctx.height, k);
-  cuts_.assign(grid_.count() * n, kNoNode);
-  cut_counts_.assign(grid_.count(), 0);
-  centres_.assign(grid_.count(), {});
   d_max_abs_ = params_.d_max * ctx.scene.bounds.diagonal();
   const float clamp = frame.clamp_distance;
-  timer.time("cuts", [&] {
-    tbb::parallel_for(size_t(0), grid_.count(), [&](size_t b) {
-      int bx = int(b % size_t(grid_.blocks_x)), by = int(b / size_t(grid_.blocks_x));
-      int x0 = bx * k, y0 = by * k;
-      GBufferSample g = trace_gbuffer(ctx, x0 + std::min(k, ctx.width - x0) / 2, y0 + std::min(k, ctx.height - y0) / 2);
-      centres_[b] = g;
-      std::vector<uint32_t> cut;
-      cut.reserve(n);
-      build_cut(tree_, n, [&](const LightNode& node) {
-        return g.valid ? hybrid_weight(node, g.p, g.n, clamp) : luminance(node.intensity);
-      }, cut);
-      std::sort(cut.begin(), cut.end(),
-                [&](uint32_t a, uint32_t c) { return first_leaf_below(tree_, a) < first_leaf_below(tree_, c); });
-      std::copy(cut.begin(), cut.end(), cuts_.begin() + b * n);
-      cut_counts_[b] = uint32_t(cut.size());
-    });
-  });
+  auto centre = [](const BlockRect& r) { return glm::ivec2(r.x0 + r.w / 2, r.y0 + r.h / 2); };
+  auto error = [&](const LightNode& node, const GBufferSample& g) {
+    return g.valid ? hybrid_weight(node, g.p, g.n, clamp) : luminance(node.intensity);
+  };
+  // Cut i of neighbouring blocks must cover nearby parts of the tree for blending by index.
+  auto leaf_order = [&](std::vector<uint32_t>& cut) {
+    std::sort(cut.begin(), cut.end(),
+              [&](uint32_t a, uint32_t c) { return first_leaf_below(tree_, a) < first_leaf_below(tree_, c); });
+  };
+  timer.time("cuts", [&] { cuts_ = build_block_cuts(ctx, tree_, params_.block_size, n, centre, error, leaf_order); });
   mock_cut_.clear();
   if (!tree_.empty()) {
     uint32_t level = std::min(level_of(n), level_of(tree_.first_leaf));
@@ -111,7 +99,7 @@ void HybridSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nloh
   counters["hybrid"] = {{"tree_nodes", tree_.nodes.size()},
                         {"tree_height", tree_.empty() ? 0 : tree_height(tree_)},
                         {"suitable_internal_nodes", count_suitable_internal(tree_)},
-                        {"blocks", grid_.count()},
+                        {"blocks", cuts_.grid.count()},
                         {"mock_cut_size", mock_cut_.size()}};
 }
 
@@ -154,9 +142,10 @@ IndirectEstimate HybridSampler::estimate(const ManyLightFrame& frame, const Shad
   size_t blocks[4];
   float p[4], sum = 0.0f;
   for (int c = 0; c < 4; ++c) {
-    int cx = std::clamp(bx + (c & 1), 0, grid_.blocks_x - 1), cy = std::clamp(by + (c >> 1), 0, grid_.blocks_y - 1);
-    blocks[c] = size_t(cy) * size_t(grid_.blocks_x) + size_t(cx);
-    const GBufferSample& g = centres_[blocks[c]];
+    int cx = std::clamp(bx + (c & 1), 0, cuts_.grid.blocks_x - 1);
+    int cy = std::clamp(by + (c >> 1), 0, cuts_.grid.blocks_y - 1);
+    blocks[c] = size_t(cy) * size_t(cuts_.grid.blocks_x) + size_t(cx);
+    const GBufferSample& g = cuts_.guides[blocks[c]];
     bool similar = g.valid && glm::dot(g.n, point.frame.n) > params_.n_min && glm::distance(g.p, point.p) < d_max_abs_;
     p[c] = similar ? ((c & 1) ? tx : 1.0f - tx) * ((c >> 1) ? ty : 1.0f - ty) : 0.0f;
     sum += p[c];
@@ -173,7 +162,7 @@ IndirectEstimate HybridSampler::estimate(const ManyLightFrame& frame, const Shad
       ++c;
     }
     if (p[c] == 0.0f) c = int(std::max_element(p, p + 4) - p);  // rounding past the last weight
-    std::span<const uint32_t> cut = block_cut(blocks[c]);
+    std::span<const uint32_t> cut = cuts_.cut(blocks[c]);
     if (i < cut.size()) traverse(frame, point, cut[i], sampler, e);
   }
   return e;

@@ -72,9 +72,7 @@ class HybridSampler final : public TreeSamplerBase {
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                             PixelSampler& sampler) const override;
 
-  std::span<const uint32_t> block_cut(size_t block) const {
-    return {cuts_.data() + block * size_t(params_.cut_size), cut_counts_[block]};
-  }
+  const BlockCuts& cuts() const { return cuts_; }
   std::span<const uint32_t> mock_cut() const { return mock_cut_; }
 
  private:
@@ -83,10 +81,7 @@ class HybridSampler final : public TreeSamplerBase {
                 IndirectEstimate& e) const;
 
   HybridParams params_;
-  BlockGrid grid_;
-  std::vector<uint32_t> cuts_;  // block b: cuts_[b n, b n + cut_counts_[b]), in leaf order
-  std::vector<uint32_t> cut_counts_;
-  std::vector<GBufferSample> centres_;  // per block: the centre pixel's G-buffer
+  BlockCuts cuts_;  // built at each block's centre pixel, each cut in leaf order
   std::vector<uint32_t> mock_cut_;
   float d_max_abs_ = 0.0f;
 };

@@ -107,39 +107,26 @@ RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.c
 void RtslcSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
   const RenderContext& ctx = frame.context;
   TreeSamplerBase::prepare(frame, timer, counters);
-  const int k = params_.block_size;
-  const uint32_t m = uint32_t(params_.cut_size);
-  grid_ = BlockGrid(ctx.width, ctx.height, k);
-  cuts_.assign(grid_.count() * m, kNoNode);
-  cut_counts_.assign(grid_.count(), 0);
   // RTSLC bounds the distance below at 0.001 of the scene size so that a node touching the
   // pivot does not take every split.
   const float min_distance = 0.001f * ctx.scene.bounds.diagonal();
+  auto random_pivot = [&](const BlockRect& r) {
+    HashRng rng(ctx.options.seed, uint32_t(r.index), 0, 0x52544C43u);  // "RTLC": the pivot stream
+    int px = r.x0 + std::min(int(rng.next() * float(r.w)), r.w - 1);
+    int py = r.y0 + std::min(int(rng.next() * float(r.h)), r.h - 1);
+    return glm::ivec2(px, py);
+  };
+  auto error = [&](const LightNode& node, const GBufferSample& g) {
+    // No pivot surface (a background pixel): split by intensity alone.
+    return g.valid ? rtslc_cut_error(node, g.p, g.n, min_distance) : luminance(node.intensity);
+  };
   timer.time("cuts", [&] {
-    tbb::parallel_for(size_t(0), grid_.count(), [&](size_t b) {
-      int bx = int(b % size_t(grid_.blocks_x)), by = int(b / size_t(grid_.blocks_x));
-      int x0 = bx * k, y0 = by * k;
-      int w = std::min(k, ctx.width - x0), h = std::min(k, ctx.height - y0);
-      HashRng rng(ctx.options.seed, uint32_t(b), 0, 0x52544C43u);  // "RTLC": the pivot stream
-      int px = x0 + std::min(int(rng.next() * float(w)), w - 1);
-      int py = y0 + std::min(int(rng.next() * float(h)), h - 1);
-      GBufferSample g = trace_gbuffer(ctx, px, py);
-      std::vector<uint32_t> cut;
-      cut.reserve(m);
-      build_cut(tree_, m, [&](const LightNode& node) {
-        // No pivot surface (a background pixel): split by intensity alone.
-        return g.valid ? rtslc_cut_error(node, g.p, g.n, min_distance) : luminance(node.intensity);
-      }, cut);
-      std::copy(cut.begin(), cut.end(), cuts_.begin() + b * m);
-      cut_counts_[b] = uint32_t(cut.size());
-    });
+    cuts_ = build_block_cuts(ctx, tree_, params_.block_size, uint32_t(params_.cut_size), random_pivot, error);
   });
-  uint64_t total = 0;
-  for (uint32_t c : cut_counts_) total += c;
   counters["rtslc"] = {{"tree_nodes", tree_.nodes.size()},
                        {"tree_height", tree_.empty() ? 0 : tree_height(tree_)},
-                       {"blocks", grid_.count()},
-                       {"mean_cut_size", grid_.count() ? double(total) / double(grid_.count()) : 0.0}};
+                       {"blocks", cuts_.grid.count()},
+                       {"mean_cut_size", cuts_.mean_size()}};
 }
 
 IndirectEstimate RtslcSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,
@@ -148,7 +135,7 @@ IndirectEstimate RtslcSampler::estimate(const ManyLightFrame& frame, const Shadi
   if (tree_.empty()) return e;
   const uint32_t r = uint32_t(params_.interleave), slots = r * r;
   const uint32_t slot = (r * (uint32_t(point.y) % r) + uint32_t(point.x) % r + frame_index_) % slots;
-  std::span<const uint32_t> cut = block_cut(grid_.index(point.x, point.y));
+  std::span<const uint32_t> cut = cuts_.cut(cuts_.grid.index(point.x, point.y));
   for (uint32_t i = slot; i < cut.size(); i += slots) {
     TreeSample s = rtslc_traverse(tree_, cut[i], point.p, point.frame.n, sampler);
     e.nodes_visited += s.nodes_visited;

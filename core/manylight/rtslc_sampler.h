@@ -64,16 +64,11 @@ class RtslcSampler final : public TreeSamplerBase {
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                             PixelSampler& sampler) const override;
 
-  const BlockGrid& grid() const { return grid_; }
-  std::span<const uint32_t> block_cut(size_t block) const {
-    return {cuts_.data() + block * size_t(params_.cut_size), cut_counts_[block]};
-  }
+  const BlockCuts& cuts() const { return cuts_; }
 
  private:
   RtslcParams params_;
-  BlockGrid grid_;
-  std::vector<uint32_t> cuts_;        // block b: cuts_[b M, b M + cut_counts_[b])
-  std::vector<uint32_t> cut_counts_;
+  BlockCuts cuts_;  // built at each block's random pivot pixel
   uint32_t frame_index_ = 0;  // interleaving offset; single frames use 0
 };
 

@@ -25,7 +25,6 @@ class HashRng {
       : key_(pcg_hash(seed ^ pcg_hash(pixel ^ pcg_hash(sample ^ pcg_hash(stream))))) {}
   uint32_t next_bits() { return pcg_hash(key_ + 0x9E3779B9u * ++dimension_); }
   float next() { return bits_to_unit_float(next_bits()); }
-  uint32_t dimension() const { return dimension_; }
 
  private:
   uint32_t key_;

@@ -17,10 +17,4 @@ double StageTimer::ms(const std::string& stage) const {
   return 0.0;
 }
 
-nlohmann::json StageTimer::to_json() const {
-  nlohmann::json j = nlohmann::json::object();
-  for (const auto& [name, total] : stages_) j[name] = total;
-  return j;
-}
-
 }  // namespace sst

@@ -27,7 +27,6 @@ class StageTimer {
   void add(const std::string& stage, double ms);
   double ms(const std::string& stage) const;  // 0 when the stage never ran
   const std::vector<std::pair<std::string, double>>& stages() const { return stages_; }
-  nlohmann::json to_json() const;  // {"stage": ms, ...}; JSON objects sort keys, stages() keeps run order
 
  private:
   std::vector<std::pair<std::string, double>> stages_;

@@ -1,21 +1,35 @@
-// sst-eval: one subcommand per task; each lives in its own app/eval_<name>.cpp, and this file
-// only registers them and dispatches.
+// sst-eval: one subcommand per task (compare, sweep, merge, table, check); this file only
+// registers them and dispatches.
 #include <CLI/CLI.hpp>
 
 #include "app/cli_common.h"
 #include "app/eval_compare.h"
+#include "app/eval_experiments.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"sst-eval: compare images and run experiments"};
   app.require_subcommand(1);
   sst::app::CompareArgs compare;
+  sst::app::SweepArgs sweep;
+  sst::app::MergeArgs merge;
+  sst::app::TableArgs table;
+  sst::app::CheckArgs check;
   CLI::App* compare_cmd = sst::app::add_compare_command(app, compare);
+  CLI::App* sweep_cmd = sst::app::add_sweep_command(app, sweep);
+  CLI::App* merge_cmd = sst::app::add_merge_command(app, merge);
+  CLI::App* table_cmd = sst::app::add_table_command(app, table);
+  CLI::App* check_cmd = sst::app::add_check_command(app, check);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     // CLI11 prints the message (and --help); its own codes are 100+, ours for usage errors is 2.
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (compare_cmd->parsed()) return sst::app::run_guarded([&] { return sst::app::run_compare(compare); });
+  using namespace sst::app;
+  if (compare_cmd->parsed()) return run_guarded([&] { return run_compare(compare); });
+  if (sweep_cmd->parsed()) return run_guarded([&] { return run_sweep_command(sweep); });
+  if (merge_cmd->parsed()) return run_guarded([&] { return run_merge_command(merge); });
+  if (table_cmd->parsed()) return run_guarded([&] { return run_table_command(table); });
+  if (check_cmd->parsed()) return run_guarded([&] { return run_check_command(check); });
   return 2;
 }

@@ -35,10 +35,9 @@ MethodInfo vpl_method(const char* name, const char* description) {
     return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p), std::make_unique<S>());
   });
 }
-}  // namespace
 
-const std::vector<MethodInfo>& method_registry() {
-  static const std::vector<MethodInfo> registry = {
+std::vector<MethodInfo>& mutable_registry() {
+  static std::vector<MethodInfo> registry = {
       entry<PathTracerParams, PathTracer>(
           "pt", "unidirectional path tracer, next-event estimation with MIS; PT_n = --max-bounces n"),
       vpl_method<ExhaustiveSampler>("exhaustive", "every VPL with its shadow ray: the VPL ground truth"),
@@ -69,6 +68,24 @@ const std::vector<MethodInfo>& method_registry() {
   };
   return registry;
 }
+
+MethodInfo& registry_entry(const std::string& name) {
+  for (MethodInfo& m : mutable_registry())
+    if (m.name == name) return m;
+  throw Error("ScopedMethodOverride: no method '" + name + "' to replace");
+}
+
+}  // namespace
+
+const std::vector<MethodInfo>& method_registry() { return mutable_registry(); }
+
+ScopedMethodOverride::ScopedMethodOverride(MethodInfo replacement) {
+  MethodInfo& entry = registry_entry(replacement.name);
+  original_ = entry;
+  entry = std::move(replacement);
+}
+
+ScopedMethodOverride::~ScopedMethodOverride() { registry_entry(original_.name) = original_; }
 
 const MethodInfo& find_method(const std::string& name) {
   std::vector<std::string> names;

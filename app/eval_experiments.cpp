@@ -1,0 +1,127 @@
+#include "app/eval_experiments.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/eval/experiment_config.h"
+#include "core/eval/merge.h"
+#include "core/eval/metrics_check.h"
+#include "core/eval/sweep.h"
+#include "core/eval/table.h"
+#include "core/util/error.h"
+#include "core/util/json_io.h"
+
+namespace fs = std::filesystem;
+
+namespace sst::app {
+namespace {
+
+void add_scene_options(CLI::App* cmd, std::vector<std::string>& scene_dirs, std::string& cache_dir) {
+  cmd->add_option("--scene-dir", scene_dirs, "directory to search for scenes (repeatable; also SST_SCENE_PATH)");
+  cmd->add_option("--cache-dir", cache_dir, "reference cache [SST_CACHE_DIR or ~/.cache/sst/references]");
+}
+
+void print_summary(const nlohmann::json& results, const std::string& dir) {
+  std::fprintf(stderr, "%zu runs -> %s/results.json, results.csv, report.html\n", results["runs"].size(), dir.c_str());
+}
+
+}  // namespace
+
+CLI::App* add_sweep_command(CLI::App& app, SweepArgs& a) {
+  CLI::App* cmd = app.add_subcommand("sweep", "render every run of an experiment config and measure it");
+  cmd->add_option("config", a.config, "experiment config (configs/*.json)")->required();
+  cmd->add_option("-o,--output", a.output, "results folder [results/<config name>]");
+  cmd->add_flag("--resume", a.resume, "keep the finished runs in the results folder and render the rest");
+  cmd->add_option("--shard", a.shard, "render only slice i of n (i/n, 0-based); default from SLURM_ARRAY_TASK_*");
+  add_scene_options(cmd, a.scene_dirs, a.cache_dir);
+  cmd->add_flag("-q,--quiet", a.quiet, "no progress on stderr");
+  return cmd;
+}
+
+int run_sweep_command(const SweepArgs& a) {
+  ExperimentConfig config = load_experiment_config(a.config);
+  SweepOptions o;
+  o.output_dir = a.output.empty() ? (fs::path("results") / config.name).string() : a.output;
+  o.resume = a.resume;
+  if (!a.shard.empty()) parse_shard(a.shard, o.shard_index, o.shard_count);
+  else shard_from_slurm(o.shard_index, o.shard_count);
+  o.scene_dirs = a.scene_dirs;
+  o.cache_dir = a.cache_dir;
+  o.quiet = a.quiet;
+  nlohmann::json results = run_sweep(config, o);
+  if (!a.quiet) {
+    if (o.shard_count > 1)
+      std::fprintf(stderr, "shard %d/%d: %zu runs -> %s/shards/; join the shards with sst-eval merge\n", o.shard_index,
+                   o.shard_count, results["runs"].size(), o.output_dir.c_str());
+    else
+      print_summary(results, o.output_dir);
+  }
+  return 0;
+}
+
+CLI::App* add_merge_command(CLI::App& app, MergeArgs& a) {
+  CLI::App* cmd = app.add_subcommand("merge", "join the results folders of a sweep's shards into one");
+  cmd->add_option("shards", a.shard_dirs, "results folders written by sweep --shard")->required();
+  cmd->add_option("-o,--output", a.output, "merged results folder [the first shard folder]");
+  return cmd;
+}
+
+int run_merge_command(const MergeArgs& a) {
+  std::string out = a.output.empty() ? a.shard_dirs.front() : a.output;
+  print_summary(merge_sweep(a.shard_dirs, out), out);
+  return 0;
+}
+
+CLI::App* add_table_command(CLI::App& app, TableArgs& a) {
+  CLI::App* cmd = app.add_subcommand("table", "print the results of a sweep as a table like the papers'");
+  cmd->add_option("results", a.results, "results.json (or its folder)")->required();
+  cmd->add_option("--format", a.format, "markdown or csv")->capture_default_str();
+  cmd->add_option("--stage", a.stages, "add a column with this stage's median time (repeatable)");
+  return cmd;
+}
+
+int run_table_command(const TableArgs& a) {
+  std::string path = fs::is_directory(a.results) ? (fs::path(a.results) / "results.json").string() : a.results;
+  std::fputs(format_table(read_json_file(path), a.format, a.stages).c_str(), stdout);
+  return 0;
+}
+
+CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
+  CLI::App* cmd = app.add_subcommand("check", "re-render a config and fail if an error metric is worse than its baseline");
+  cmd->add_option("config", a.config, "experiment config (configs/ci.json)")->required();
+  cmd->add_option("--baseline", a.baseline, "baseline results folder (results/ci)")->required();
+  cmd->add_option("-o,--output", a.output, "where the fresh results go; its runs/ are replaced [<tmp>/sst-check-<name>]");
+  cmd->add_flag("--update", a.update, "render and write the results as the new baseline instead of checking");
+  cmd->add_option("--sigmas", a.sigmas, "tolerance in standard errors of the baseline's noise")->capture_default_str();
+  cmd->add_option("--min-relative", a.min_relative, "tolerance floor, fraction of the baseline value")->capture_default_str();
+  add_scene_options(cmd, a.scene_dirs, a.cache_dir);
+  cmd->add_flag("-q,--quiet", a.quiet, "no progress on stderr");
+  return cmd;
+}
+
+int run_check_command(const CheckArgs& a) {
+  ExperimentConfig config = load_experiment_config(a.config);
+  SweepOptions o;
+  o.output_dir = a.update ? a.baseline
+                          : (a.output.empty() ? (fs::temp_directory_path() / ("sst-check-" + config.name)).string() : a.output);
+  fs::remove_all(fs::path(o.output_dir) / "runs");  // a check always renders afresh
+  o.scene_dirs = a.scene_dirs;
+  o.cache_dir = a.cache_dir;
+  o.quiet = a.quiet;
+  nlohmann::json baseline;
+  if (!a.update) baseline = read_json_file((fs::path(a.baseline) / "results.json").string());  // before rendering
+  nlohmann::json fresh = run_sweep(config, o);
+  if (a.update) {
+    std::printf("baseline updated: %s (%zu runs); review with git diff %s\n", a.baseline.c_str(), fresh["runs"].size(),
+                a.baseline.c_str());
+    return 0;
+  }
+  CheckOutcome outcome = check_against_baseline(fresh, baseline, {a.sigmas, a.min_relative});
+  std::fputs(outcome.table.c_str(), stdout);
+  std::printf("metrics check %s: %d failure(s); fresh results in %s\n", outcome.passed ? "passed" : "FAILED",
+              outcome.failures, o.output_dir.c_str());
+  return outcome.passed ? 0 : 1;
+}
+
+}  // namespace sst::app

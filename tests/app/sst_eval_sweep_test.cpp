@@ -1,0 +1,135 @@
+// sst-eval sweep/merge/table/check as a user runs them: SIGKILL at arbitrary moments then
+// --resume, sharding with GNU parallel (and Slurm's variables), and one-line errors.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <thread>
+
+#include "core/util/json_io.h"
+#include "tests/core/eval/eval_test_util.h"
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+extern char** environ;
+
+namespace sst {
+namespace {
+
+using nlohmann::json;
+
+const json kConfig = {{"width", 32},
+                      {"height", 32},
+                      {"spp", 4},
+                      {"vpls", 1000},
+                      {"axes", {{"method", {"slc", "sst", "rtslc", "hybrid", "pt"}}}},
+                      {"seeds", 2},
+                      {"reference", {{"spp", 64}}}};
+
+fs::path write_config(const fs::path& dir, const json& config = kConfig) {
+  fs::path path = dir / "cfg.json";
+  std::ofstream(path) << config.dump(2);
+  return path;
+}
+
+std::string eval_command(const std::string& arguments) { return std::string(SST_EVAL_EXE) + " " + arguments; }
+
+test::CommandResult eval(const std::string& arguments) { return test::run_command(eval_command(arguments)); }
+
+// Starts the command and SIGKILLs it after `delay` (if it is still running).
+void run_and_kill(const std::string& command, std::chrono::milliseconds delay) {
+  std::string line = "exec " + command + " >/dev/null 2>&1";
+  const char* argv[] = {"/bin/sh", "-c", line.c_str(), nullptr};
+  pid_t pid = 0;
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  std::this_thread::sleep_for(delay);
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+}
+
+TEST(SstEvalSweep, KilledAtAnyMomentAndResumedGivesTheSameResults) {
+  fs::path dir = test::temp_dir();
+  fs::path config = write_config(dir);
+  std::string common = config.string() + " -q --cache-dir " + (dir / "cache").string();
+  test::CommandResult whole = eval("sweep " + common + " -o " + (dir / "whole").string());
+  ASSERT_EQ(whole.exit_code, 0) << whole.output;
+  json expected = test::without_timings(read_json_file((dir / "whole/results.json").string()));
+  // Kill points spread over the sweep: while the reference renders, between and inside runs.
+  int i = 0;
+  for (int ms : {20, 120, 250, 400, 550}) {
+    fs::path out = dir / ("killed" + std::to_string(i++));
+    std::string args = config.string() + " -q --cache-dir " + (dir / ("cache-k" + std::to_string(i))).string() +
+                       " -o " + out.string();
+    run_and_kill(eval_command("sweep " + args), std::chrono::milliseconds(ms));
+    test::CommandResult resumed = eval("sweep --resume " + args);
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    EXPECT_EQ(test::without_timings(read_json_file((out / "results.json").string())), expected) << "killed after " << ms << " ms";
+  }
+}
+
+TEST(SstEvalSweep, ShardsRunWithGnuParallelAndMerge) {
+  if (test::run_command("parallel --version").exit_code != 0) GTEST_SKIP() << "GNU parallel is not installed";
+  fs::path dir = test::temp_dir();
+  fs::path config = write_config(dir);
+  std::string common = config.string() + " -q --cache-dir " + (dir / "cache").string();
+  ASSERT_EQ(eval("sweep " + common + " -o " + (dir / "whole").string()).exit_code, 0);
+  test::CommandResult sharded = test::run_command("parallel --will-cite -j 3 " + eval_command("sweep " + common) +
+                                                  " --shard {}/3 -o " + (dir / "shard{}").string() + " ::: 0 1 2");
+  ASSERT_EQ(sharded.exit_code, 0) << sharded.output;
+  test::CommandResult merged = eval("merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() + " " +
+                                    (dir / "shard2").string() + " -o " + (dir / "merged").string());
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+  EXPECT_EQ(test::without_timings(read_json_file((dir / "merged/results.json").string())),
+            test::without_timings(read_json_file((dir / "whole/results.json").string())));
+  test::CommandResult incomplete = eval("merge " + (dir / "shard0").string() + " -o " + (dir / "partial").string());
+  EXPECT_EQ(incomplete.exit_code, 1);
+  EXPECT_NE(incomplete.output.find("error: merge: 6 of 10 runs are missing"), std::string::npos) << incomplete.output;
+}
+
+TEST(SstEvalSweep, SlurmArrayVariablesSelectTheShard) {
+  fs::path dir = test::temp_dir();
+  fs::path config = write_config(dir, {{"width", 16}, {"axes", {{"method", {"pt", "slc", "sst"}}}}, {"reference", {{"spp", 8}}}});
+  test::CommandResult r = test::run_command("SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_MIN=1 SLURM_ARRAY_TASK_COUNT=2 " +
+                                            eval_command("sweep -q " + config.string() + " --cache-dir " +
+                                                         (dir / "cache").string() + " -o " + (dir / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json shard = read_json_file((dir / "out/shards/shard-1-of-2.json").string());
+  ASSERT_EQ(shard["runs"].size(), 1u);
+  EXPECT_EQ(shard["runs"][0]["id"], "0001-slc");
+}
+
+TEST(SstEvalSweep, BadInputIsOneLineAndKeepsFinishedRuns) {
+  fs::path dir = test::temp_dir();
+  std::ofstream(dir / "bad.json") << R"({"widht": 32})";
+  test::CommandResult r = eval("sweep " + (dir / "bad.json").string() + " -o " + (dir / "out").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.output, "error: " + (dir / "bad.json").string() + ": unknown key 'widht' (did you mean 'width'?)\n");
+  fs::path config = write_config(dir, {{"width", 16}, {"method", "pt"}, {"reference", {{"spp", 8}}}});
+  std::string args = config.string() + " -q --cache-dir " + (dir / "cache").string() + " -o " + (dir / "out").string();
+  ASSERT_EQ(eval("sweep " + args).exit_code, 0);
+  test::CommandResult again = eval("sweep " + args);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.output.find("pass --resume"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "out/runs/0000-pt/run.json"));
+}
+
+TEST(SstEvalSweep, TablePrintsMarkdownAndCsv) {
+  fs::path dir = test::temp_dir();
+  fs::path config = write_config(dir, {{"width", 16}, {"axes", {{"method", {"pt", "slc"}}, {"spp", {1, 2}}}}, {"reference", {{"spp", 8}}}});
+  ASSERT_EQ(eval("sweep -q " + config.string() + " --cache-dir " + (dir / "cache").string() + " -o " + (dir / "out").string()).exit_code, 0);
+  test::CommandResult md = eval("table " + (dir / "out").string() + " --stage sampling");
+  ASSERT_EQ(md.exit_code, 0) << md.output;
+  EXPECT_EQ(md.output.rfind("| method | spp | frame ms (median [min-max]) | sampling ms | RMSE |", 0), 0u) << md.output;
+  EXPECT_EQ(std::count(md.output.begin(), md.output.end(), '\n'), 2 + 4);
+  test::CommandResult csv = eval("table " + (dir / "out/results.json").string() + " --format csv");
+  EXPECT_EQ(csv.output.rfind("method,spp,frame ms", 0), 0u) << csv.output;
+  EXPECT_EQ(eval("table " + (dir / "out").string() + " --format xml").exit_code, 1);
+}
+
+}  // namespace
+}  // namespace sst

@@ -1,0 +1,49 @@
+#include "core/eval/metrics_check.h"
+
+#include <gtest/gtest.h>
+
+namespace sst {
+namespace {
+
+using nlohmann::json;
+
+json results(double rmse, double rmse_robust_std, double ssim, int seeds = 4, size_t nonfinite = 0) {
+  return {{"groups",
+           {{{"group", "slc"}, {"seeds", seeds}, {"rmse_median", rmse}, {"rmse_robust_std", rmse_robust_std},
+             {"ssim_median", ssim}, {"ssim_robust_std", 0.001}, {"time_ms_median", 10.0}}}},
+          {"runs", {{{"group", "slc"}, {"metrics", {{"nonfinite_test", nonfinite}}}}}}};
+}
+
+TEST(MetricsCheck, ToleranceComesFromTheBaselineNoise) {
+  json base = results(0.100, 0.010, 0.80);
+  // 4 sigma * 1.2533 * 0.01 * sqrt(2/4) = 0.03545 > the 5% floor (0.005).
+  EXPECT_TRUE(check_against_baseline(results(0.135, 0.01, 0.80), base).passed);
+  CheckOutcome worse = check_against_baseline(results(0.136, 0.01, 0.80), base);
+  EXPECT_FALSE(worse.passed);
+  EXPECT_EQ(worse.failures, 1);
+  EXPECT_NE(worse.table.find("| slc | rmse | 0.1 | 0.136 | +36.00% | 0.035449 | WORSE |"), std::string::npos)
+      << worse.table;
+  // Better beyond the tolerance passes, but is reported.
+  CheckOutcome better = check_against_baseline(results(0.05, 0.01, 0.80), base);
+  EXPECT_TRUE(better.passed);
+  EXPECT_NE(better.table.find("better"), std::string::npos);
+}
+
+TEST(MetricsCheck, RelativeFloorWithoutNoiseEstimate) {
+  json base = results(0.100, 0.0, 0.80, 1);
+  EXPECT_TRUE(check_against_baseline(results(0.1049, 0.0, 0.80, 1), base).passed);
+  EXPECT_FALSE(check_against_baseline(results(0.1051, 0.0, 0.80, 1), base).passed);
+}
+
+TEST(MetricsCheck, SsimDropNonFiniteAndMissingGroupsFail) {
+  json base = results(0.1, 0.01, 0.80);
+  EXPECT_FALSE(check_against_baseline(results(0.1, 0.01, 0.70), base).passed);
+  EXPECT_FALSE(check_against_baseline(results(0.1, 0.01, 0.80, 4, 3), base).passed);
+  json empty = {{"groups", json::array()}, {"runs", json::array()}};
+  CheckOutcome missing = check_against_baseline(empty, base);
+  EXPECT_FALSE(missing.passed);
+  EXPECT_NE(missing.table.find("missing"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sst

@@ -1,0 +1,179 @@
+// In-process sweeps of tiny renders of the built-in Cornell box: files, references and their
+// cache, resume, equal-time calibration bounds, and the metrics check catching a broken method.
+#include "core/eval/sweep.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/eval/merge.h"
+#include "core/eval/metrics_check.h"
+#include "core/eval/run_executor.h"
+#include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/many_light_method.h"
+#include "core/manylight/slc_sampler.h"
+#include "core/render/method_registry.h"
+#include "core/scene/default_scene.h"
+#include "core/util/error.h"
+#include "core/util/json_io.h"
+#include "tests/core/eval/eval_test_util.h"
+#include "tests/test_util.h"
+
+namespace fs = std::filesystem;
+
+namespace sst {
+namespace {
+
+using nlohmann::json;
+
+ExperimentConfig tiny_config(json extra = json::object()) {
+  json j = {{"width", 24}, {"height", 24}, {"spp", 2}, {"vpls", 300}, {"reference", {{"spp", 16}}}};
+  j.update(extra);
+  ExperimentConfig c = parse_experiment_config(j, "tiny");
+  c.name = "tiny";
+  return c;
+}
+
+SweepOptions options_in(const fs::path& dir) {
+  SweepOptions o;
+  o.output_dir = (dir / "out").string();
+  o.cache_dir = (dir / "cache").string();
+  o.quiet = true;
+  return o;
+}
+
+using test::without_timings;
+
+TEST(Sweep, WritesEveryRunAndReusesCachedReferences) {
+  auto dir = test::temp_dir();
+  ExperimentConfig config = tiny_config({{"axes", {{"method", {"slc", "sst"}}}}, {"seeds", 2}});
+  json r = run_sweep(config, options_in(dir));
+  ASSERT_EQ(r["runs"].size(), 4u);
+  ASSERT_EQ(r["groups"].size(), 2u);
+  ASSERT_EQ(r["references"].size(), 1u);  // one path reference shared by all runs
+  for (const json& run : r["runs"]) {
+    for (const auto& [kind, path] : run["images"].items()) EXPECT_TRUE(fs::exists(dir / "out" / path.get<std::string>()));
+    EXPECT_GT(run["metrics"]["rmse"].get<double>(), 0.0);
+  }
+  EXPECT_TRUE(r["groups"][0]["bias2"].is_number());
+  for (const char* f : {"results.json", "results.csv", "report.html", "config.json"}) EXPECT_TRUE(fs::exists(dir / "out" / f));
+  std::string ref_id = r["references"].begin().key();
+  auto cached = dir / "cache" / (ref_id + ".json");
+  ASSERT_TRUE(fs::exists(cached));
+  auto stamp = fs::last_write_time(cached);
+  SweepOptions other = options_in(dir);
+  other.output_dir = (dir / "out2").string();
+  json again = run_sweep(config, other);
+  EXPECT_EQ(fs::last_write_time(cached), stamp);  // not rendered again
+  EXPECT_EQ(without_timings(again)["runs"], without_timings(r)["runs"]);
+}
+
+TEST(Sweep, VplReferenceUsesTheRunsOwnVplSet) {
+  auto dir = test::temp_dir();
+  // exhaustive at the reference's spp and seed is the reference itself: zero error, exactly.
+  ExperimentConfig config = tiny_config({{"method", "exhaustive"}, {"spp", 4}, {"reference", {{"kind", "vpl"}, {"spp", 4}}},
+                                         {"seeds", 2}});
+  json r = run_sweep(config, options_in(dir));
+  ASSERT_EQ(r["references"].size(), 2u);  // one per seed: each seed draws its own VPLs
+  for (const json& run : r["runs"]) EXPECT_EQ(run["metrics"]["rmse"].get<double>(), 0.0);
+}
+
+TEST(Sweep, RefusesToOverwriteAndResumesOnlyWhatIsMissing) {
+  auto dir = test::temp_dir();
+  ExperimentConfig config = tiny_config({{"axes", {{"method", {"slc", "pt"}}}}});
+  SweepOptions o = options_in(dir);
+  json first = run_sweep(config, o);
+  EXPECT_THROW(run_sweep(config, o), Error);
+  auto kept = dir / "out/runs/0000-slc/run.json";
+  auto stamp = fs::last_write_time(kept);
+  fs::remove(dir / "out/runs/0001-pt/run.json");  // as if killed before this run finished
+  o.resume = true;
+  json resumed = run_sweep(config, o);
+  EXPECT_EQ(fs::last_write_time(kept), stamp);
+  EXPECT_TRUE(fs::exists(dir / "out/runs/0001-pt/run.json"));
+  EXPECT_EQ(without_timings(resumed), without_timings(first));
+}
+
+TEST(Sweep, ShardsAreDisjointAndMergeToTheWholeSweep) {
+  auto dir = test::temp_dir();
+  ExperimentConfig config = tiny_config({{"axes", {{"method", {"slc", "pt", "sst"}}}}});
+  json whole = run_sweep(config, options_in(dir / "whole"));
+  for (int i = 0; i < 2; ++i) {
+    SweepOptions o = options_in(dir);
+    o.output_dir = (dir / ("shard" + std::to_string(i))).string();
+    o.shard_index = i;
+    o.shard_count = 2;
+    EXPECT_EQ(run_sweep(config, o)["runs"].size(), i == 0 ? 2u : 1u);
+  }
+  EXPECT_THROW(merge_sweep({(dir / "shard0").string()}, (dir / "merged").string()), Error);  // a shard missing
+  json merged = merge_sweep({(dir / "shard0").string(), (dir / "shard1").string()}, (dir / "merged").string());
+  EXPECT_EQ(without_timings(merged), without_timings(whole));
+  EXPECT_TRUE(fs::exists(dir / "merged/runs/0001-pt/image.png"));
+}
+
+TEST(Sweep, ShardSyntax) {
+  int i = 0, n = 0;
+  parse_shard("2/5", i, n);
+  EXPECT_EQ(i, 2);
+  EXPECT_EQ(n, 5);
+  EXPECT_THROW(parse_shard("5/5", i, n), Error);
+  EXPECT_THROW(parse_shard("1", i, n), Error);
+  EXPECT_THROW(parse_shard("1/2x", i, n), Error);
+}
+
+TEST(Sweep, CalibratedSppIsClampedToItsRange) {
+  Scene scene = load_default_scene();
+  RunSpec run = expand_runs(tiny_config({{"method", "slc"}})).front();
+  json probes;
+  EXPECT_EQ(calibrate_spp(scene, run, 1e-9, &probes), 1);
+  EXPECT_EQ(probes["spp"], json({1, 4}));
+  EXPECT_EQ(calibrate_spp(scene, run, 1e12, nullptr), 1 << 16);
+}
+
+// SLC with its child probabilities swapped in the walk but not in the estimate's division: the
+// kind of slip a refactoring makes. The CI metrics check must catch it.
+class SwappedWeightsSlc final : public TreeSamplerBase {
+ public:
+  using TreeSamplerBase::TreeSamplerBase;
+  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override {
+    IndirectEstimate e;
+    uint32_t i = tree_.root;
+    double p = 1.0;
+    while (!tree_[i].is_leaf()) {
+      auto w = slc_child_weights(tree_[tree_[i].left], tree_[tree_[i].right], point);
+      double sum = w[0] + w[1];
+      if (!(sum > 0.0)) return e;
+      bool left = sampler.get1d() < w[1] / sum;  // the bug: the sibling's probability
+      p *= (left ? w[0] : w[1]) / sum;
+      i = left ? tree_[i].left : tree_[i].right;
+    }
+    uint32_t vpl = tree_[i].vpl();
+    if (vpl < frame.vpls.size()) e.value = divide_by_probability(shade_vpl(frame, point, frame.vpls[vpl], &e.shadow_rays), p);
+    return e;
+  }
+};
+
+TEST(Sweep, MetricsCheckPassesOnCleanCodeAndFailsOnSwappedWeights) {
+  auto dir = test::temp_dir();
+  ExperimentConfig config = tiny_config({{"width", 48}, {"height", 48}, {"spp", 8}, {"vpls", 2000}, {"seeds", 3},
+                                         {"axes", {{"method", {"slc", "sst"}}}}, {"reference", {{"spp", 256}}}});
+  json baseline = run_sweep(config, options_in(dir / "baseline"));
+  json clean = run_sweep(config, options_in(dir / "clean"));
+  EXPECT_TRUE(check_against_baseline(clean, baseline).passed);
+
+  MethodInfo broken = find_method("slc");
+  broken.create = [](const json& j) -> std::unique_ptr<Method> {
+    TreeMethodParams p;
+    params_from_json(p, j, "slc");
+    return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p), std::make_unique<SwappedWeightsSlc>(p.tree));
+  };
+  ScopedMethodOverride override_slc(broken);
+  json bad = run_sweep(config, options_in(dir / "broken"));
+  CheckOutcome outcome = check_against_baseline(bad, baseline);
+  EXPECT_FALSE(outcome.passed) << outcome.table;
+  EXPECT_NE(outcome.table.find("| slc | rmse |"), std::string::npos);
+  EXPECT_EQ(outcome.table.find("| sst | rmse | ") == std::string::npos, false);
+}
+
+}  // namespace
+}  // namespace sst

@@ -3,11 +3,14 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/slc_sampler.h"
 #include "core/rng/hash_rng.h"
 #include "core/util/error.h"
 
@@ -21,6 +24,13 @@ void validate(const RtslcParams& p) {
   if (p.cut_size < 1 || p.cut_size > 32) throw Error("rtslc: parameter 'cut_size' must be in 1..32");
   if (p.interleave != 1 && p.interleave != 2 && p.interleave != 4)
     throw Error("rtslc: parameter 'interleave' must be 1, 2 or 4");
+  parse_rtslc_weights(p.weights);
+}
+
+RtslcWeights parse_rtslc_weights(const std::string& name) {
+  if (name == "rtslc") return RtslcWeights::rtslc;
+  if (name == "slc") return RtslcWeights::slc;
+  throw Error("rtslc: parameter 'weights' must be 'rtslc' (Lin & Yuksel 2020) or 'slc' (Yuksel 2019), got '" + name + "'");
 }
 
 namespace {
@@ -36,8 +46,18 @@ float distance_weight(float ig0, float ig1, float d0, float d1) {
 }
 
 // (P_0, P_1) at an internal node; both 0 for a dead branch, where no VPL below can light x.
-std::pair<float, float> child_probabilities(const LightTree& tree, const LightNode& node, vec3 x, vec3 n) {
+std::pair<float, float> child_probabilities(const LightTree& tree, const LightNode& node, vec3 x, vec3 n,
+                                            RtslcWeights weights) {
   const LightNode &c0 = tree[node.left], &c1 = tree[node.right];
+  if (weights == RtslcWeights::slc) {
+    // Yuksel 2019, exactly as the slc method weighs them (dead: a zero or non-finite sum).
+    std::array<double, 2> w = slc_child_weights(c0, c1, x, n);
+    double sum = w[0] + w[1];
+    if (!(sum > 0.0) || !std::isfinite(sum)) return {0.0f, 0.0f};
+    // P_1 = 1 - P_0 as below: rtslc_traverse takes c0 iff u < P_0, so that is P_1 exactly.
+    float p0 = float(w[0] / sum);
+    return {p0, 1.0f - p0};
+  }
   if (!(importance(c0, x, n) + importance(c1, x, n) > 0.0f)) return {0.0f, 0.0f};
   float p0 = rtslc_child_probability(c0, c1, x, n);
   return {p0, 1.0f - p0};
@@ -62,7 +82,8 @@ float rtslc_child_probability(const LightNode& c0, const LightNode& c1, vec3 x, 
   return std::clamp(0.5f * (wmax + wmin), 0.0f, 1.0f);
 }
 
-TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler) {
+TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler,
+                          RtslcWeights weights) {
   TreeSample s;
   uint32_t i = from;
   float prob = 1.0f;
@@ -70,7 +91,7 @@ TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, 
     ++s.nodes_visited;
     const LightNode& node = tree[i];
     if (node.is_leaf()) break;
-    auto [p0, p1] = child_probabilities(tree, node, x, n);
+    auto [p0, p1] = child_probabilities(tree, node, x, n, weights);
     if (!(p0 + p1 > 0.0f)) return s;  // dead branch: no estimate, no shadow ray
     float u = sampler.get1d();
     bool left = u < p0;
@@ -83,13 +104,14 @@ TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, 
   return s;
 }
 
-double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n) {
+double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n,
+                              RtslcWeights weights) {
   double prob = 1.0;
   uint32_t i = leaf;
   while (i > from) {
     uint32_t parent = i / 2;
     const LightNode& p = tree[parent];
-    auto [p0, p1] = child_probabilities(tree, p, x, n);
+    auto [p0, p1] = child_probabilities(tree, p, x, n, weights);
     prob *= (i == p.left) ? double(p0) : double(p1);
     i = parent;
   }
@@ -102,7 +124,10 @@ float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance)
   return luminance(node.intensity) * box_cos_bound_linear(node.bounds(), x, n) / d2;
 }
 
-RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.common.tree), params_(params) { validate(params_); }
+RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.common.tree), params_(params) {
+  validate(params_);
+  weights_ = parse_rtslc_weights(params_.weights);
+}
 
 void RtslcSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
   const RenderContext& ctx = frame.context;
@@ -137,7 +162,7 @@ IndirectEstimate RtslcSampler::estimate(const ManyLightFrame& frame, const Shadi
   const uint32_t slot = (r * (uint32_t(point.y) % r) + uint32_t(point.x) % r + frame_index_) % slots;
   std::span<const uint32_t> cut = cuts_.cut(cuts_.grid.index(point.x, point.y));
   for (uint32_t i = slot; i < cut.size(); i += slots) {
-    TreeSample s = rtslc_traverse(tree_, cut[i], point.p, point.frame.n, sampler);
+    TreeSample s = rtslc_traverse(tree_, cut[i], point.p, point.frame.n, sampler, weights_);
     e.nodes_visited += s.nodes_visited;
     if (s.node == kNoNode) continue;
     const Vpl& vpl = frame.vpls[tree_[s.node].vpl()];

@@ -10,8 +10,10 @@
 // | block_size | 8       | k: pixels per block side; one cut per block                               |
 // | cut_size   | 8       | M: nodes per cut, 1..32                                                   |
 // | interleave | 1       | r in {1, 2, 4}: pixel slot s of an r x r tile evaluates cut nodes i = s mod r^2, times r^2 |
+// | weights    | rtslc   | traversal weights: rtslc (Lin & Yuksel 2020: mean of the min- and max-distance weights) or slc (Yuksel 2019: slc_child_weights, min distance; for equal-sample comparisons) |
 #pragma once
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
@@ -27,6 +29,7 @@ struct RtslcParams {
   int block_size = 8;
   int cut_size = 8;
   int interleave = 1;
+  std::string weights = "rtslc";
 
   RtslcParams() { common.tree.tree = "perfect"; }  // the paper's tree; the only one allowed
   template <class V>
@@ -35,9 +38,20 @@ struct RtslcParams {
     v("block_size", block_size, "pixels per side of a block sharing one light cut");
     v("cut_size", cut_size, "nodes per light cut (1..32); one traversal from each per sample");
     v("interleave", interleave, "interleaved sampling rate r (1, 2 or 4): each pixel of an r x r tile evaluates 1/r^2 of the cut");
+    v("weights", weights,
+      "traversal weights: rtslc (Lin & Yuksel 2020: mean of min- and max-distance weights) or slc (Yuksel 2019: min distance)");
   }
 };
 void validate(const RtslcParams& params);  // sst::Error naming the bad parameter
+
+// The traversal weights below a cut node (parameter `weights`). The cut-building error
+// (rtslc_cut_error) is the same for both.
+enum class RtslcWeights {
+  rtslc,  // rtslc_child_probability: the mean of the min- and max-distance weights
+  slc,    // P_0 = w_0 / (w_0 + w_1) with Yuksel 2019's slc_child_weights (slc_sampler.h)
+};
+// "rtslc" or "slc"; anything else is an sst::Error naming parameter 'weights' and the allowed values.
+RtslcWeights parse_rtslc_weights(const std::string& name);
 
 // P_0, the probability of descending into c0 rather than c1 at shading point x (normal n):
 // the mean of the weights with the minimum and the maximum distances (RTSLC). 0 for an empty c0;
@@ -49,11 +63,13 @@ struct TreeSample {
   float probability = 0.0f;
   uint32_t nodes_visited = 0;
 };
-// One stochastic descent from `from` to a leaf.
-TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler);
-// The exact probability that rtslc_traverse from `from` ends at `leaf` (0 if not below it).
-// Heap layout only (perfect tree).
-double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n);
+// One stochastic descent from `from` to a leaf, choosing children with `weights`.
+TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler,
+                          RtslcWeights weights = RtslcWeights::rtslc);
+// The exact probability that rtslc_traverse from `from` (with the same `weights`) ends at `leaf`
+// (0 if not below it). Heap layout only (perfect tree).
+double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n,
+                              RtslcWeights weights = RtslcWeights::rtslc);
 // The cut-building error of a node seen from x: lum(I) cosbound / max(dmin^2, min_distance^2).
 float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance);
 
@@ -68,6 +84,7 @@ class RtslcSampler final : public TreeSamplerBase {
 
  private:
   RtslcParams params_;
+  RtslcWeights weights_ = RtslcWeights::rtslc;  // params_.weights, parsed
   BlockCuts cuts_;  // built at each block's random pivot pixel
   uint32_t frame_index_ = 0;  // interleaving offset; single frames use 0
 };

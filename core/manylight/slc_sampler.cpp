@@ -61,20 +61,24 @@ std::vector<double> stop_probabilities(const LightTree& tree, const ChildWeights
   return out;
 }
 
-std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, const ShadingPoint& point) {
+std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, vec3 x, vec3 n) {
   const LightNode* c[2] = {&left, &right};
   double base[2], d2[2];
   bool near = false;
   for (int k = 0; k < 2; ++k) {
-    const LightNode& n = *c[k];
-    base[k] = n.empty() ? 0.0 : double(luminance(n.intensity)) * box_cos_bound(n.bounds(), point.p, point.frame.n);
-    d2[k] = n.empty() ? 0.0 : box_distance2_min(n.bounds(), point.p);
-    float diag = n.bounds().diagonal();
+    const LightNode& node = *c[k];
+    base[k] = node.empty() ? 0.0 : double(luminance(node.intensity)) * box_cos_bound(node.bounds(), x, n);
+    d2[k] = node.empty() ? 0.0 : box_distance2_min(node.bounds(), x);
+    float diag = node.bounds().diagonal();
     // <= rather than <: a point box (diag 0) at x itself must not divide by 0.
-    if (!n.empty() && d2[k] <= double(diag) * double(diag)) near = true;
+    if (!node.empty() && d2[k] <= double(diag) * double(diag)) near = true;
   }
   if (near) return {base[0], base[1]};
   return {base[0] > 0.0 ? base[0] / d2[0] : 0.0, base[1] > 0.0 ? base[1] / d2[1] : 0.0};
+}
+
+std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, const ShadingPoint& point) {
+  return slc_child_weights(left, right, point.p, point.frame.n);
 }
 
 IndirectEstimate SlcSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,

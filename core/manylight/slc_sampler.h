@@ -43,7 +43,9 @@ std::vector<double> stop_probabilities(const LightTree& tree, const ChildWeights
 // c / p computed in double; 0 for p <= 0 or a non-finite result (never a NaN in the image).
 vec3 divide_by_probability(vec3 c, double p);
 
-// Yuksel's weights at `point`.
+// Yuksel's weights at shading position x with shading normal n (rtslc's `weights slc` uses them too).
+std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, vec3 x, vec3 n);
+// The same at `point` (x = point.p, n = point.frame.n).
 std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, const ShadingPoint& point);
 inline ChildWeights slc_weights(const ShadingPoint& point) {
   return [&point](const LightNode& l, const LightNode& r) { return slc_child_weights(l, r, point); };

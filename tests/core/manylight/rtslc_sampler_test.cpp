@@ -1,11 +1,15 @@
 // rtslc: exact traversal probabilities against observed frequencies, cut invariants,
-// unbiasedness against exhaustive on the same VPLs, parameter extremes and errors.
+// unbiasedness against exhaustive on the same VPLs, parameter extremes and errors; the same for
+// the `weights slc` variant (Yuksel 2019's traversal weights below RTSLC's cuts).
 #include "core/manylight/rtslc_sampler.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
+
 #include <bit>
 
+#include "core/manylight/slc_sampler.h"
 #include "core/render/method_registry.h"
 #include "core/render/renderer.h"
 #include "core/rng/hash_rng.h"
@@ -84,6 +88,64 @@ TEST(RtslcTraversal, ChildProbabilityRules) {
   EXPECT_EQ(rtslc_child_probability(b, b, x, n), 0.0f);  // dead branch
 }
 
+TEST(RtslcTraversal, SlcWeightsLeafProbabilitiesSumToOneAndMatchFrequencies) {
+  VplSet vpls = random_vpls(50, 1);
+  LightTree tree = perfect_tree(vpls);
+  // A point among the VPLs (near boxes: distance ignored) and one outside them (1/dmin^2 counts).
+  const std::array<std::pair<vec3, vec3>, 2> points = {{
+      {vec3(0.3f, -0.2f, 1.2f), glm::normalize(vec3(0.2f, 0.1f, -1.0f))},
+      {vec3(2.5f, 0.4f, -0.3f), glm::normalize(vec3(-1.0f, 0.2f, 0.1f))},
+  }};
+  for (auto [x, n] : points) {
+    for (uint32_t from : {tree.root, 2u, 3u, 6u}) {
+      auto [lo, hi] = leaf_range(tree, from);
+      std::vector<double> expected(hi - lo);
+      double sum = 0.0;
+      for (uint32_t l = lo; l < hi; ++l)
+        sum += expected[l - lo] = rtslc_leaf_probability(tree, from, l, x, n, RtslcWeights::slc);
+      ASSERT_NEAR(sum, 1.0, 1e-5) << "from " << from;
+      // The weights are Yuksel's (slc_child_weights): at the start node P_0 = w_0 / (w_0 + w_1).
+      std::array<double, 2> w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, n);
+      double left = 0.0;
+      for (uint32_t l = lo; l < lo + (hi - lo) / 2; ++l) left += expected[l - lo];
+      EXPECT_NEAR(left, w[0] / (w[0] + w[1]), 1e-5) << "from " << from;
+      const int samples = 200000;
+      std::vector<double> observed(hi - lo, 0.0);
+      for (int i = 0; i < samples; ++i) {
+        PixelSampler sampler(13, from, uint32_t(i));
+        TreeSample s = rtslc_traverse(tree, from, x, n, sampler, RtslcWeights::slc);
+        ASSERT_NE(s.node, kNoNode);
+        ASSERT_GE(s.node, lo);
+        ASSERT_LT(s.node, hi);
+        ASSERT_NEAR(s.probability, expected[s.node - lo], 1e-4 * expected[s.node - lo] + 1e-9);
+        observed[s.node - lo] += 1.0;
+      }
+      for (double& e : expected) e *= samples;
+      int dof = 0;
+      double chi2 = test::chi_square_statistic(observed, expected, &dof);
+      EXPECT_LT(chi2, test::chi_square_critical_1e6(dof)) << "from " << from << " dof " << dof;
+    }
+  }
+}
+
+TEST(RtslcTraversal, SlcWeightsDeadBranchHasProbabilityZero) {
+  VplSet vpls = random_vpls(50, 1);  // all within [-1, 1]^3
+  LightTree tree = perfect_tree(vpls);
+  const vec3 x(0, 0, 5), n(0, 0, 1);  // every box behind the surface: no VPL can light x
+  for (uint32_t from : {tree.root, 2u, 5u}) {
+    auto [lo, hi] = leaf_range(tree, from);
+    double sum = 0.0;
+    for (uint32_t l = lo; l < hi; ++l) sum += rtslc_leaf_probability(tree, from, l, x, n, RtslcWeights::slc);
+    EXPECT_EQ(sum, 0.0) << "from " << from;
+    for (int i = 0; i < 100; ++i) {
+      PixelSampler sampler(13, from, uint32_t(i));
+      TreeSample s = rtslc_traverse(tree, from, x, n, sampler, RtslcWeights::slc);
+      EXPECT_EQ(s.node, kNoNode);
+      EXPECT_EQ(s.probability, 0.0f);
+    }
+  }
+}
+
 TEST(RtslcCuts, DisjointAndCoverAllVpls) {
   for (int count : {1, 2, 5, 50, 1000}) {
     VplSet vpls = random_vpls(count, uint32_t(count));
@@ -133,6 +195,40 @@ TEST(RtslcSampler, UnbiasedAgainstExhaustive) {
   }
 }
 
+TEST(RtslcSampler, SlcWeightsUnbiasedAgainstExhaustive) {
+  // As UnbiasedAgainstExhaustive, with Yuksel 2019's traversal weights below the same cuts.
+  Scene scene = load_default_scene();
+  nlohmann::json vpl = {{"vpls", 24}, {"vpl_max_bounces", 3}};
+  RenderResult exhaustive = render_frame(scene, test::small_options("exhaustive", 4096, 16), vpl);
+  Image e = test::frame_layer(exhaustive, "indirect");
+  for (int cut : {1, 8}) {
+    nlohmann::json p = vpl;
+    p["cut_size"] = cut;
+    p["block_size"] = 4;
+    p["weights"] = "slc";
+    RenderResult r = render_frame(scene, test::small_options("rtslc", 4096, 16), p);
+    EXPECT_EQ(test::z_test_failures(test::frame_layer(r, "indirect"), test::frame_layer(r, "indirect_variance"), e, 5.1), 0) << "cut " << cut;
+    EXPECT_EQ(r.frame.counters.nonfinite_samples, 0u);
+  }
+}
+
+TEST(RtslcSampler, DefaultWeightsAreRtslcBitForBit) {
+  Scene scene = load_default_scene();
+  nlohmann::json p = {{"vpls", 200}};
+  RenderResult by_default = render_frame(scene, test::small_options("rtslc", 2, 24, false), p);
+  p["weights"] = "rtslc";
+  RenderResult explicit_rtslc = render_frame(scene, test::small_options("rtslc", 2, 24, false), p);
+  ASSERT_EQ(by_default.frame.color.data.size(), explicit_rtslc.frame.color.data.size());
+  for (size_t i = 0; i < by_default.frame.color.data.size(); ++i)
+    ASSERT_EQ(std::bit_cast<uint32_t>(by_default.frame.color.data[i]), std::bit_cast<uint32_t>(explicit_rtslc.frame.color.data[i]))
+        << "value " << i;
+  // The parameter reaches the sampler: the slc weights draw other VPLs, so another image.
+  p["weights"] = "slc";
+  RenderResult slc = render_frame(scene, test::small_options("rtslc", 2, 24, false), p);
+  EXPECT_NE(slc.frame.color.data, by_default.frame.color.data);
+  for (float v : slc.frame.color.data) ASSERT_TRUE(std::isfinite(v));
+}
+
 TEST(RtslcSampler, ExtremesGiveFiniteImages) {
   Scene scene = load_default_scene();
   std::vector<nlohmann::json> cases = {
@@ -161,6 +257,16 @@ TEST(RtslcSampler, BadParametersNameTheParameter) {
   EXPECT_NE(message({{"cut_size", 0}}).find("cut_size"), std::string::npos);
   EXPECT_NE(message({{"block_size", 0}}).find("block_size"), std::string::npos);
   EXPECT_NE(message({{"interleave", 3}}).find("interleave"), std::string::npos);
+  std::string weights = message({{"weights", "lightcuts"}});
+  EXPECT_NE(weights.find("'weights'"), std::string::npos) << weights;
+  EXPECT_NE(weights.find("'rtslc'"), std::string::npos) << weights;
+  EXPECT_NE(weights.find("'slc'"), std::string::npos) << weights;
+  EXPECT_NE(weights.find("lightcuts"), std::string::npos) << weights;
+  EXPECT_NE(message({{"weights", "SLC"}}).find("weights"), std::string::npos);  // names are exact
+  EXPECT_EQ(message({{"weights", "slc"}}), "no error");
+  EXPECT_EQ(parse_rtslc_weights("rtslc"), RtslcWeights::rtslc);
+  EXPECT_EQ(parse_rtslc_weights("slc"), RtslcWeights::slc);
+  EXPECT_THROW(parse_rtslc_weights(""), Error);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "core/eval/experiment_config.h"
 #include "core/eval/merge.h"
 #include "core/eval/metrics_check.h"
+#include "core/eval/report.h"
 #include "core/eval/sweep.h"
 #include "core/eval/table.h"
 #include "core/util/error.h"
@@ -84,6 +85,19 @@ CLI::App* add_table_command(CLI::App& app, TableArgs& a) {
 int run_table_command(const TableArgs& a) {
   std::string path = fs::is_directory(a.results) ? (fs::path(a.results) / "results.json").string() : a.results;
   std::fputs(format_table(read_json_file(path), a.format, a.stages).c_str(), stdout);
+  return 0;
+}
+
+CLI::App* add_report_command(CLI::App& app, ReportArgs& a) {
+  CLI::App* cmd = app.add_subcommand("report", "write report.html again from a results folder's results.json");
+  cmd->add_option("results", a.results, "results folder (or its results.json)")->required();
+  return cmd;
+}
+
+int run_report_command(const ReportArgs& a) {
+  fs::path dir = fs::is_directory(a.results) ? fs::path(a.results) : fs::path(a.results).parent_path();
+  write_report(read_json_file((dir / "results.json").string()), dir.string());
+  std::fprintf(stderr, "%s\n", (dir / "report.html").string().c_str());
   return 0;
 }
 

@@ -37,6 +37,12 @@ struct TableArgs {
 CLI::App* add_table_command(CLI::App& app, TableArgs& args);
 int run_table_command(const TableArgs& args);
 
+struct ReportArgs {
+  std::string results;  // results folder (or its results.json)
+};
+CLI::App* add_report_command(CLI::App& app, ReportArgs& args);
+int run_report_command(const ReportArgs& args);
+
 struct CheckArgs {
   std::string config;
   std::string baseline;

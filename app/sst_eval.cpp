@@ -1,4 +1,4 @@
-// sst-eval: one subcommand per task (compare, sweep, merge, table, check); this file only
+// sst-eval: one subcommand per task (compare, sweep, merge, table, report, check); this file only
 // registers them and dispatches.
 #include <CLI/CLI.hpp>
 
@@ -14,11 +14,13 @@ int main(int argc, char** argv) {
   sst::app::MergeArgs merge;
   sst::app::TableArgs table;
   sst::app::CheckArgs check;
+  sst::app::ReportArgs report;
   CLI::App* compare_cmd = sst::app::add_compare_command(app, compare);
   CLI::App* sweep_cmd = sst::app::add_sweep_command(app, sweep);
   CLI::App* merge_cmd = sst::app::add_merge_command(app, merge);
   CLI::App* table_cmd = sst::app::add_table_command(app, table);
   CLI::App* check_cmd = sst::app::add_check_command(app, check);
+  CLI::App* report_cmd = sst::app::add_report_command(app, report);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -31,5 +33,6 @@ int main(int argc, char** argv) {
   if (merge_cmd->parsed()) return run_guarded([&] { return run_merge_command(merge); });
   if (table_cmd->parsed()) return run_guarded([&] { return run_table_command(table); });
   if (check_cmd->parsed()) return run_guarded([&] { return run_check_command(check); });
+  if (report_cmd->parsed()) return run_guarded([&] { return run_report_command(report); });
   return 2;
 }

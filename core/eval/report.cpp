@@ -1,12 +1,14 @@
 #include "core/eval/report.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <map>
 #include <set>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/eval/svg_plot.h"
@@ -49,7 +51,8 @@ std::string url(std::string_view path) {
   static const char* hex = "0123456789ABCDEF";
   std::string out;
   for (unsigned char c : path) {
-    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || c == '/') {
+    const bool alnum = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    if (alnum || c == '-' || c == '_' || c == '.' || c == '~' || c == '/') {
       out += char(c);
     } else {
       out += '%';
@@ -286,8 +289,9 @@ std::string group_row(const Index& index, const json& g, const std::vector<std::
   const bool pareto = member(g, "pareto") == true;
   double ssim = number(g, "ssim_mean");
   if (!std::isfinite(ssim)) ssim = mean_finite(run_values(runs, "metrics", "ssim"));
-  std::string s = pareto ? "<tr class=\"pareto\"><td class=\"mark\" title=\"on the RMSE-vs-time Pareto front\">\u2605</td>"
-                         : "<tr><td class=\"mark\"></td>";
+  std::string s = pareto
+                      ? "<tr class=\"pareto\"><td class=\"mark\" title=\"on the RMSE-vs-time Pareto front\">\u2605</td>"
+                      : "<tr><td class=\"mark\"></td>";
   s += td(esc(text_of(g, "label")), "label");
   for (const std::string& a : axes) {
     const json& v = member(member(g, "axes"), a.c_str());
@@ -311,9 +315,10 @@ std::string group_table(const Index& index, const Scene& scene) {
        "<th>efficiency 1/s</th><th>SSIM gain %/ms</th><th>bias\u00b2</th><th>variance</th><th>seeds</th>"
        "</tr></thead>\n<tbody>\n";
   for (const json* g : scene.groups) s += group_row(index, *g, axes);
-  return s + "</tbody></table>\n<p class=\"note\">\u2605 on the RMSE-vs-time Pareto front of this scene. Time, "
-             "RMSE, SSIM, bias\u00b2 and variance are over the group's seeds; rel MSE, PSNR, efficiency and SSIM "
-             "gain are means over its runs.</p>\n";
+  return s +
+         "</tbody></table>\n<p class=\"note\">\u2605 on the RMSE-vs-time Pareto front of this scene. Time, "
+         "RMSE, SSIM, bias\u00b2 and variance are over the group's seeds; rel MSE, PSNR, efficiency and SSIM "
+         "gain are means over its runs.</p>\n";
 }
 
 // ---- plots
@@ -370,7 +375,8 @@ Plot vpl_plot(const Index& index, const Scene& scene, bool rmse) {
   Plot plot;
   plot.title = (rmse ? "RMSE vs VPL count: " : "Time vs VPL count: ") + scene.name;
   plot.x = {"VPLs", AxisScale::log10};
-  plot.y = rmse ? PlotAxis{"RMSE (mean over seeds)", AxisScale::log10} : PlotAxis{"render time, ms (median)", AxisScale::linear};
+  plot.y = rmse ? PlotAxis{"RMSE (mean over seeds)", AxisScale::log10}
+                : PlotAxis{"render time, ms (median)", AxisScale::linear};
   for (const json* g : scene.groups) {
     const std::string others = axes_text(member(*g, "axes"), "vpls");
     const std::string name = text_of(*g, "label") + (others.empty() ? "" : " " + others);
@@ -400,7 +406,8 @@ std::string reference_card(const Index& index, const std::string& id, const std:
   const json& ref = index.reference(id);
   return "<div class=\"card ref\"><h4>reference <code>" + esc(id) + "</code></h4><p class=\"sub\">" +
          esc(reference_summary(ref)) + "</p><figure><div class=\"pane\"" + style + "><img src=\"" +
-         url(text_of(ref, "image_png")) + "\" alt=\"reference\"></div><figcaption>reference</figcaption>"
+         url(text_of(ref, "image_png")) +
+         "\" alt=\"reference\"></div><figcaption>reference</figcaption>"
          "</figure></div>\n";
 }
 
@@ -412,14 +419,17 @@ std::string run_card(const Index& index, const json& group, const json& run) {
   std::string s = "<div class=\"card\"><h4>" + esc(text_of(group, "label")) +
                   (axes.empty() ? "" : " <span class=\"axes\">" + esc(axes) + "</span>") + "</h4>";
   s += "<p class=\"sub\">run <code>" + esc(id) + "</code> (seed " + esc(text_of(run, "seed")) + "), RMSE " +
-       fmt(number(member(run, "metrics"), "rmse")) + ", SSIM " + fmt(number(member(run, "metrics"), "ssim")) +
-       ", " + fmt(number(member(run, "time_ms"), "median")) + " ms</p><div class=\"pair\">";
+       fmt(number(member(run, "metrics"), "rmse")) + ", SSIM " + fmt(number(member(run, "metrics"), "ssim")) + ", " +
+       fmt(number(member(run, "time_ms"), "median")) + " ms</p><div class=\"pair\">";
   s += "<figure><div class=\"pane\"" + style + "><img class=\"flip\" src=\"" + url(text_of(images, "png")) +
        "\" data-run=\"" + url(text_of(images, "png")) + "\" data-ref=\"" + url(ref_png) + "\" data-id=\"" + esc(id) +
-       "\" alt=\"run " + esc(id) + "\" title=\"click: flip between this run and the reference\"></div>"
-       "<figcaption>showing <b class=\"which\">run " + esc(id) + "</b> (click to flip)</figcaption></figure>";
+       "\" alt=\"run " + esc(id) +
+       "\" title=\"click: flip between this run and the reference\"></div>"
+       "<figcaption>showing <b class=\"which\">run " +
+       esc(id) + "</b> (click to flip)</figcaption></figure>";
   s += "<figure><div class=\"pane\"" + style + "><img src=\"" + url(text_of(images, "error_png")) +
-       "\" alt=\"error of " + esc(id) + "\"></div><figcaption>relative error, 0 (black) .. \u22651 (yellow) "
+       "\" alt=\"error of " + esc(id) +
+       "\"></div><figcaption>relative error, 0 (black) .. \u22651 (yellow) "
        "<span class=\"ramp\"></span></figcaption></figure>";
   return s + "</div></div>\n";
 }
@@ -444,8 +454,8 @@ std::string comparison_html(const Index& index, const Scene& scene) {
 std::string scene_html(const Index& index, const Scene& scene) {
   std::string s = "<section class=\"scene\"><h2>" + esc(scene.name) + "</h2>\n";
   for (const std::string& id : scene.references)
-    s += "<p class=\"sub\">metrics against reference <code>" + esc(id) + "</code>: " +
-         esc(reference_summary(index.reference(id))) + "</p>\n";
+    s += "<p class=\"sub\">metrics against reference <code>" + esc(id) +
+         "</code>: " + esc(reference_summary(index.reference(id))) + "</p>\n";
   if (!scene.groups.empty()) s += group_table(index, scene);
   s += plots_html(index, scene);
   s += "<h3>Images</h3>\n" + comparison_html(index, scene);
@@ -504,7 +514,9 @@ function show(img, ref) {
 }
 document.querySelectorAll('.compare').forEach(function (box) {
   var imgs = box.querySelectorAll('img.flip'), panes = box.querySelectorAll('.pane'), all = false, busy = false;
-  imgs.forEach(function (img) { img.addEventListener('click', function () { show(img, img.dataset.showing !== 'ref'); }); });
+  imgs.forEach(function (img) {
+    img.addEventListener('click', function () { show(img, img.dataset.showing !== 'ref'); });
+  });
   box.querySelector('.flip-all').addEventListener('click', function (e) {
     all = !all;
     imgs.forEach(function (img) { show(img, all); });

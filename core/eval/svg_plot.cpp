@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <limits>
 
 namespace sst {
@@ -13,7 +14,7 @@ namespace {
 // Tableau 10: distinguishable colours that stay readable printed in grey.
 constexpr std::array<const char*, 10> kPalette{"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                                                "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
-constexpr int kShapes = 5;  // circle, square, triangle, diamond, inverted triangle
+constexpr int kShapes = 5;       // circle, square, triangle, diamond, inverted triangle
 constexpr double kInset = 10.0;  // pixels between the frame and the outermost data point
 
 std::string num(double v, int decimals = 1) {
@@ -118,22 +119,25 @@ std::string marker_shape(int shape, double cx, double cy, double r, const std::s
     return s += '"';
   }
   // Square, triangle, diamond, inverted triangle: vertices in units of r, sized to look equal.
-  static const std::vector<std::vector<std::pair<double, double>>> kVertices{
-      {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}},
-      {{0, -1.2}, {1.1, 0.8}, {-1.1, 0.8}},
-      {{0, -1.3}, {1.3, 0}, {0, 1.3}, {-1.3, 0}},
-      {{0, 1.2}, {1.1, -0.8}, {-1.1, -0.8}}};
+  static const std::vector<std::vector<std::pair<double, double>>> kVertices{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}},
+                                                                             {{0, -1.2}, {1.1, 0.8}, {-1.1, 0.8}},
+                                                                             {{0, -1.3}, {1.3, 0}, {0, 1.3}, {-1.3, 0}},
+                                                                             {{0, 1.2}, {1.1, -0.8}, {-1.1, -0.8}}};
   s += " d=\"";
   const auto& vertices = kVertices[size_t(shape - 1) % kVertices.size()];
   for (size_t i = 0; i < vertices.size(); ++i)
-    s.append(i ? "L" : "M").append(num(cx + vertices[i].first * r)).append(",").append(num(cy + vertices[i].second * r));
+    s.append(i ? "L" : "M")
+        .append(num(cx + vertices[i].first * r))
+        .append(",")
+        .append(num(cy + vertices[i].second * r));
   return s += "Z\"";
 }
 
 std::string polyline(const std::vector<std::pair<double, double>>& xy, const std::string& style) {
   std::string s = "<polyline fill=\"none\" ";
   s.append(style).append(" points=\"");
-  for (size_t i = 0; i < xy.size(); ++i) s.append(i ? " " : "").append(num(xy[i].first)).append(",").append(num(xy[i].second));
+  for (size_t i = 0; i < xy.size(); ++i)
+    s.append(i ? " " : "").append(num(xy[i].first)).append(",").append(num(xy[i].second));
   return s += "\"/>\n";
 }
 
@@ -143,16 +147,52 @@ std::string text(double x, double y, const std::string& anchor, const std::strin
          xml_escape(body) + "</text>\n";
 }
 
+// The mantissa of v > 0 is one of `digits` (1 x 10^k, 2 x 10^k, ...).
+bool has_mantissa(double v, std::initializer_list<double> digits) {
+  const double m = v / decimal(1, int(std::floor(std::log10(v) + 1e-12)));
+  return std::any_of(digits.begin(), digits.end(), [&](double d) { return std::abs(m - d) < 1e-6; });
+}
+
+// Labels that do not overlap: all ticks, else (log axes) those at 1, 2 and 5 x 10^k, else the
+// powers of ten; the other ticks keep their grid lines. Text width is estimated (no renderer).
+template <class ToPixel>
+std::vector<double> labelled_ticks(const Axis& axis, ToPixel pixel, bool horizontal) {
+  auto fits = [&](const std::vector<double>& ticks) {
+    for (size_t i = 1; i < ticks.size(); ++i) {
+      const double room = std::abs(pixel(ticks[i]) - pixel(ticks[i - 1]));
+      const double need =
+          horizontal ? 3.4 * double(format_tick(ticks[i]).size() + format_tick(ticks[i - 1]).size()) + 8 : 15.0;
+      if (room < need) return false;
+    }
+    return true;
+  };
+  if (axis.scale == AxisScale::linear || fits(axis.ticks)) return axis.ticks;
+  for (auto digits : {std::initializer_list<double>{1, 2, 5}, std::initializer_list<double>{1}}) {
+    std::vector<double> some;
+    std::copy_if(axis.ticks.begin(), axis.ticks.end(), std::back_inserter(some),
+                 [&](double t) { return has_mantissa(t, digits); });
+    if (some.size() >= 2 && fits(some)) return some;
+  }
+  return {axis.ticks.front(), axis.ticks.back()};
+}
+
 std::string grid_and_ticks(const Frame& f) {
   std::string s = "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
-  for (double t : f.x->ticks) s += "<line x1=\"" + num(f.px(t)) + "\" y1=\"" + num(f.top) + "\" x2=\"" +
-                                   num(f.px(t)) + "\" y2=\"" + num(f.bottom) + "\"/>\n";
-  for (double t : f.y->ticks) s += "<line x1=\"" + num(f.left) + "\" y1=\"" + num(f.py(t)) + "\" x2=\"" +
-                                   num(f.right) + "\" y2=\"" + num(f.py(t)) + "\"/>\n";
+  for (double t : f.x->ticks)
+    s += "<line x1=\"" + num(f.px(t)) + "\" y1=\"" + num(f.top) + "\" x2=\"" + num(f.px(t)) + "\" y2=\"" +
+         num(f.bottom) + "\"/>\n";
+  for (double t : f.y->ticks)
+    s += "<line x1=\"" + num(f.left) + "\" y1=\"" + num(f.py(t)) + "\" x2=\"" + num(f.right) + "\" y2=\"" +
+         num(f.py(t)) + "\"/>\n";
   s += "</g>\n<rect x=\"" + num(f.left) + "\" y=\"" + num(f.top) + "\" width=\"" + num(f.right - f.left) +
-       "\" height=\"" + num(f.bottom - f.top) + "\" fill=\"none\" stroke=\"#444\"/>\n<g class=\"ticks\" fill=\"#333\">\n";
-  for (double t : f.x->ticks) s += text(f.px(t), f.bottom + 16, "middle", format_tick(t));
-  for (double t : f.y->ticks) s += text(f.left - 6, f.py(t) + 4, "end", format_tick(t));
+       "\" height=\"" + num(f.bottom - f.top) +
+       "\" fill=\"none\" stroke=\"#444\"/>\n<g class=\"ticks\" fill=\"#333\">\n";
+  for (double t : labelled_ticks(
+           *f.x, [&](double v) { return f.px(v); }, true))
+    s += text(f.px(t), f.bottom + 16, "middle", format_tick(t));
+  for (double t : labelled_ticks(
+           *f.y, [&](double v) { return f.py(v); }, false))
+    s += text(f.left - 6, f.py(t) + 4, "end", format_tick(t));
   return s + "</g>\n";
 }
 
@@ -185,11 +225,13 @@ std::string highlight_svg(const Plot& plot, const Frame& f) {
   for (const PlotPoint& p : plot.highlight.points)
     if (drawable(p, plot)) xy.emplace_back(f.px(p.x), f.py(p.y));
   if (xy.size() < 2) return "";
-  return "<g class=\"highlight\">" +
-         polyline(xy, "stroke=\"#000\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"") + "</g>\n";
+  return "<g class=\"highlight\">" + polyline(xy, "stroke=\"#000\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"") +
+         "</g>\n";
 }
 
-bool has_legend_highlight(const Plot& plot) { return !plot.highlight.name.empty() && plot.highlight.points.size() >= 2; }
+bool has_legend_highlight(const Plot& plot) {
+  return !plot.highlight.name.empty() && plot.highlight.points.size() >= 2;
+}
 
 // Legend width from a rough average glyph width: SVG cannot measure text without a renderer.
 double legend_width(const Plot& plot) {
@@ -205,8 +247,7 @@ std::string legend_svg(const Plot& plot, double x, double y) {
   for (size_t i = 0; i < plot.series.size(); ++i, y += 18) {
     const size_t style = style_of(plot, i);
     const std::string colour = kPalette[style % kPalette.size()];
-    if (plot.series[i].line)
-      s += polyline({{x, y}, {x + 22, y}}, "stroke=\"" + colour + "\" stroke-width=\"1.5\"");
+    if (plot.series[i].line) s += polyline({{x, y}, {x + 22, y}}, "stroke=\"" + colour + "\" stroke-width=\"1.5\"");
     s += marker_shape(int(style % kShapes), x + 11, y, 4.0, "class=\"legend-marker\" fill=\"" + colour + "\"") + "/>\n";
     s += text(x + 28, y + 4, "start", plot.series[i].name);
   }
@@ -281,11 +322,21 @@ std::string xml_escape(std::string_view text) {
   out.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
       default:
         // Control characters are not allowed in XML 1.0; a label never needs them.
         out += (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') ? ' ' : c;

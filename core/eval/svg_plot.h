@@ -38,7 +38,7 @@ struct Plot {
   // Drawn over the series as a dashed black polyline without markers (the Pareto front). Named in
   // the legend when its name is not empty; nothing is drawn when it has fewer than 2 points.
   PlotSeries highlight;
-  int width = 640;   // SVG size in pixels; the legend takes its room from the right
+  int width = 640;  // SVG size in pixels; the legend takes its room from the right
   int height = 400;
 };
 

@@ -19,7 +19,9 @@ size_t count(const std::string& haystack, const std::string& needle) {
   return n;
 }
 
-bool contains(const std::string& haystack, const std::string& needle) { return haystack.find(needle) != std::string::npos; }
+bool contains(const std::string& haystack, const std::string& needle) {
+  return haystack.find(needle) != std::string::npos;
+}
 
 struct Point {
   std::string label, method;
@@ -29,8 +31,13 @@ struct Point {
 
 // A sweep point's runs over `seeds` seeds, with times and errors that vary a little by seed.
 void add_group(json& results, const std::string& scene, const std::string& ref, const Point& p, int seeds) {
-  json group = {{"group", p.label + " " + p.axes.dump()}, {"label", p.label}, {"scene", scene},
-                {"method", p.method}, {"axes", p.axes}, {"runs", json::array()}, {"seeds", seeds}};
+  json group = {{"group", p.label + " " + p.axes.dump()},
+                {"label", p.label},
+                {"scene", scene},
+                {"method", p.method},
+                {"axes", p.axes},
+                {"runs", json::array()},
+                {"seeds", seeds}};
   for (int seed = 0; seed < seeds; ++seed) {
     const int index = int(results["runs"].size());
     char id[64];
@@ -39,15 +46,26 @@ void add_group(json& results, const std::string& scene, const std::string& ref, 
     json params = {{"method", p.method}, {"spp", 4}, {"width", 160}, {"height", 120}, {"seed", seed}};
     if (p.axes.contains("vpls")) params["vpls"] = p.axes["vpls"];
     const std::string dir = std::string("runs/") + id;
-    results["runs"].push_back({{"id", id}, {"index", index}, {"group", group["group"]}, {"label", p.label},
-                               {"scene", scene}, {"method", p.method}, {"variant", ""}, {"axes", p.axes},
-                               {"seed", seed}, {"params", params}, {"reference", ref}, {"time_budget_ms", nullptr},
-                               {"spp", 4}, {"time_ms", {{"median", t}, {"min", t * 0.97}, {"max", t * 1.05}}},
-                               {"metrics", {{"rmse", e}, {"rel_mse", e * 2}, {"psnr", 30 + seed}, {"ssim", 0.8}}},
-                               {"efficiency", 1 / (e * e * t / 1000)}, {"ssim_gain_pct_per_ms", nullptr},
-                               {"gain_base", "0000-pt"},
-                               {"images", {{"exr", dir + "/image.exr"}, {"png", dir + "/image.png"},
-                                           {"error_png", dir + "/error.png"}}}});
+    results["runs"].push_back(
+        {{"id", id},
+         {"index", index},
+         {"group", group["group"]},
+         {"label", p.label},
+         {"scene", scene},
+         {"method", p.method},
+         {"variant", ""},
+         {"axes", p.axes},
+         {"seed", seed},
+         {"params", params},
+         {"reference", ref},
+         {"time_budget_ms", nullptr},
+         {"spp", 4},
+         {"time_ms", {{"median", t}, {"min", t * 0.97}, {"max", t * 1.05}}},
+         {"metrics", {{"rmse", e}, {"rel_mse", e * 2}, {"psnr", 30 + seed}, {"ssim", 0.8}}},
+         {"efficiency", 1 / (e * e * t / 1000)},
+         {"ssim_gain_pct_per_ms", nullptr},
+         {"gain_base", "0000-pt"},
+         {"images", {{"exr", dir + "/image.exr"}, {"png", dir + "/image.png"}, {"error_png", dir + "/error.png"}}}});
     group["runs"].push_back(id);
   }
   group["time_ms_median"] = p.time_ms;
@@ -64,8 +82,8 @@ void mark_pareto(json& results) {
   for (json& g : results["groups"]) {
     bool dominated = false;
     for (const json& o : results["groups"])
-      dominated |= o["scene"] == g["scene"] && o["time_ms_median"] < g["time_ms_median"] &&
-                   o["rmse_mean"] <= g["rmse_mean"];
+      dominated |=
+          o["scene"] == g["scene"] && o["time_ms_median"] < g["time_ms_median"] && o["rmse_mean"] <= g["rmse_mean"];
     g["pareto"] = !dominated;
   }
 }
@@ -75,16 +93,25 @@ const char* const kStairRef = "0f1e2d3c4b5a6978";
 
 // Two scenes, three labels (pt, slc, sst), slc/sst over two VPL counts, two seeds per point.
 json fixture(int seeds = 2) {
-  json r = {{"schema_version", 1}, {"tool", "sst-eval"}, {"tool_revision", "abc1234"},
+  json r = {{"schema_version", 1},
+            {"tool", "sst-eval"},
+            {"tool_revision", "abc1234"},
             {"machine", {{"cpu", "Test CPU 9000"}, {"hardware_threads", 2}, {"os", "Linux"}}},
-            {"device", "cpu: Test CPU 9000"}, {"name", "demo"}, {"config", json::object()},
-            {"runs", json::array()}, {"groups", json::array()}};
+            {"device", "cpu: Test CPU 9000"},
+            {"name", "demo"},
+            {"config", json::object()},
+            {"runs", json::array()},
+            {"groups", json::array()}};
   r["references"][kCornellRef] = {
-      {"kind", "path"}, {"scene", "cornell-box.gltf"}, {"image_png", std::string("references/") + kCornellRef + ".png"},
+      {"kind", "path"},
+      {"scene", "cornell-box.gltf"},
+      {"image_png", std::string("references/") + kCornellRef + ".png"},
       {"params", {{"method", "pt"}, {"spp", 1024}, {"max_bounces", 8}, {"width", 160}, {"height", 120}}},
       {"render_ms", 81234.5}};
   r["references"][kStairRef] = {
-      {"kind", "vpl"}, {"scene", "staircase.gltf"}, {"image_png", std::string("references/") + kStairRef + ".png"},
+      {"kind", "vpl"},
+      {"scene", "staircase.gltf"},
+      {"image_png", std::string("references/") + kStairRef + ".png"},
       {"params", {{"method", "exhaustive"}, {"spp", 16}, {"vpls", 100000}, {"width", 160}, {"height", 120}}},
       {"render_ms", 5000}};
   for (const auto& [scene, ref] : {std::pair{"cornell-box.gltf", kCornellRef}, {"staircase.gltf", kStairRef}}) {
@@ -179,8 +206,9 @@ TEST(Report, MarksParetoRows) {
   ASSERT_LT(pareto, r["groups"].size());
   EXPECT_EQ(count(html, "<tr class=\"pareto\">"), pareto);
   // The fastest group of each scene (sst vpls=1000) is always on the front.
-  EXPECT_TRUE(contains(html, "<tr class=\"pareto\"><td class=\"mark\" title=\"on the RMSE-vs-time Pareto front\">"
-                             "\u2605</td><td class=\"label\">sst</td><td class=\"num\">1000</td>"));
+  EXPECT_TRUE(contains(html,
+                       "<tr class=\"pareto\"><td class=\"mark\" title=\"on the RMSE-vs-time Pareto front\">"
+                       "\u2605</td><td class=\"label\">sst</td><td class=\"num\">1000</td>"));
 }
 
 TEST(Report, DrawsThreePlotsPerSceneWhenVplsVary) {

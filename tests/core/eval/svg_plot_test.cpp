@@ -66,8 +66,8 @@ TEST(SvgPlot, LogAxesSkipNonPositiveValues) {
 }
 
 TEST(SvgPlot, LinearTicksAreNiceAndCoverTheRange) {
-  const std::vector<std::pair<double, double>> ranges{
-      {0, 1}, {10, 50}, {0.013, 0.087}, {-3.2, 7.9}, {1234, 98765}, {0.3, 0.3}, {-5, -5}, {0, 0}};
+  const std::vector<std::pair<double, double>> ranges{{0, 1},        {10, 50},   {0.013, 0.087}, {-3.2, 7.9},
+                                                      {1234, 98765}, {0.3, 0.3}, {-5, -5},       {0, 0}};
   for (const auto& [lo, hi] : ranges) {
     const std::vector<double> t = linear_ticks(lo, hi);
     ASSERT_GE(t.size(), 3u) << lo << ".." << hi;
@@ -123,12 +123,25 @@ TEST(SvgPlot, LogAxisHugsTheDataRange) {
   EXPECT_EQ(svg.find(">500<"), std::string::npos);
 }
 
+TEST(SvgPlot, CrowdedLogLabelsAreThinnedToOneTwoFive) {
+  // 250..1060 on a narrow plot: ticks at every hundred, but 900 and 1000 would collide.
+  Plot plot = one_series({{250, 1}, {1060, 2}}, AxisScale::log10);
+  plot.width = 400;
+  const std::string svg = render_svg(plot);
+  EXPECT_NE(svg.find(">500<"), std::string::npos);
+  EXPECT_NE(svg.find(">1000<"), std::string::npos);
+  EXPECT_EQ(svg.find(">900<"), std::string::npos);
+  EXPECT_EQ(svg.find(">300<"), std::string::npos);
+  // Every tick keeps its grid line: 8 vertical (300..1000) plus the horizontal ones.
+  EXPECT_GE(count(svg, "<line "), 8u + 3u);
+}
+
 TEST(SvgPlot, StyleKeepsAColourWhateverTheSeriesPosition) {
   Plot plot = one_series({{1, 1}, {2, 2}});
   plot.series[0].style = 2;
   const std::string svg = render_svg(plot);
   EXPECT_NE(svg.find("class=\"marker\" fill=\"#e15759\""), std::string::npos);  // palette entry 2
-  EXPECT_EQ(svg.find("#4e79a7"), std::string::npos);                           // not entry 0
+  EXPECT_EQ(svg.find("#4e79a7"), std::string::npos);                            // not entry 0
 }
 
 TEST(SvgPlot, FormatTickIsShort) {

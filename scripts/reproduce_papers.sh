@@ -1,0 +1,17 @@
+#!/usr/bin/env bash
+# Renders every paper config into results/<name>/ and writes its tables (Markdown) beside it.
+# Usage: scripts/reproduce_papers.sh [config names...]   (default: all paper configs)
+# Needs ../shared/scenes (or SST_SCENE_PATH) and a Release build in build/. References are
+# cached (SST_CACHE_DIR, default ~/.cache/sst/references), so a rerun renders only the runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+configs=("$@")
+[ ${#configs[@]} -gt 0 ] || configs=(sst-table1 sst-table3 thesis-fig7-3 thesis-fig7-5 rtslc-tree-build rtslc-weights)
+scene_dir="${SST_SCENE_DIR:-../shared/scenes}"
+for name in "${configs[@]}"; do
+  out="results/$name"
+  resume=()
+  [ -f "$out/config.json" ] && resume=(--resume)
+  ./build/sst-eval sweep "configs/$name.json" -o "$out" --scene-dir "$scene_dir" "${resume[@]}"
+  ./build/sst-eval table "$out" --stage vpl_generation --stage tree_build --stage sampling > "$out/table.md"
+done

@@ -6,12 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 configs=("$@")
-[ ${#configs[@]} -gt 0 ] || configs=(sst-table1 sst-table3 thesis-fig7-3 thesis-fig7-5 rtslc-tree-build rtslc-weights)
+[ ${#configs[@]} -gt 0 ] || configs=(sst-table1 sst-table3 thesis-fig7-3 thesis-fig7-5 rtslc-tree-build rtslc-weights equal-time)
 scene_dir="${SST_SCENE_DIR:-../shared/scenes}"
 for name in "${configs[@]}"; do
   out="results/$name"
   resume=()
   [ -f "$out/config.json" ] && resume=(--resume)
   ./build/sst-eval sweep "configs/$name.json" -o "$out" --scene-dir "$scene_dir" "${resume[@]}"
-  ./build/sst-eval table "$out" --stage vpl_generation --stage tree_build --stage sampling > "$out/table.md"
+  ./build/sst-eval table "$out" --stage vpl_generation --stage tree_build --stage cuts --stage sampling > "$out/table.md"
 done

@@ -1,5 +1,7 @@
 #include "core/eval/report.h"
 
+#include <filesystem>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -156,6 +158,9 @@ Index build_index(const json& results) {
 }
 
 // "vpls=10000, block_size=8" (keys in JSON order, which nlohmann sorts).
+// A config names the built-in scene "" (no file).
+std::string scene_title(const std::string& name) { return name.empty() ? "built-in Cornell box" : name; }
+
 std::string axes_text(const json& axes, const std::string& skip = "") {
   std::string s;
   if (!axes.is_object()) return s;
@@ -214,7 +219,7 @@ std::string references_table(const Index& index) {
   for (const Scene& scene : index.scenes) {
     for (const std::string& id : scene.references) {
       const json& ref = index.reference(id);
-      s += "<tr><td>" + esc(scene.name) + "</td><td><code>" + esc(id) + "</code></td><td>" +
+      s += "<tr><td>" + esc(scene_title(scene.name)) + "</td><td><code>" + esc(id) + "</code></td><td>" +
            esc(reference_summary(ref)) + "</td>" + td(fmt(number(ref, "render_ms") / 1000.0) + " s") + "</tr>\n";
     }
   }
@@ -341,7 +346,7 @@ void add_point(const Index& index, Plot& plot, const std::string& name, PlotPoin
 
 Plot rmse_time_plot(const Index& index, const Scene& scene) {
   Plot plot;
-  plot.title = "RMSE vs time: " + scene.name;
+  plot.title = "RMSE vs time: " + scene_title(scene.name);
   plot.x = {"render time, ms (median)", AxisScale::log10};
   plot.y = {"RMSE (mean over seeds)", AxisScale::log10};
   plot.highlight.name = "Pareto front";
@@ -373,7 +378,7 @@ bool vpls_vary(const Scene& scene) {
 // One series per label and setting of the other axes, so each line varies the VPL count alone.
 Plot vpl_plot(const Index& index, const Scene& scene, bool rmse) {
   Plot plot;
-  plot.title = (rmse ? "RMSE vs VPL count: " : "Time vs VPL count: ") + scene.name;
+  plot.title = (rmse ? "RMSE vs VPL count: " : "Time vs VPL count: ") + scene_title(scene.name);
   plot.x = {"VPLs", AxisScale::log10};
   plot.y = rmse ? PlotAxis{"RMSE (mean over seeds)", AxisScale::log10}
                 : PlotAxis{"render time, ms (median)", AxisScale::linear};
@@ -427,10 +432,12 @@ std::string run_card(const Index& index, const json& group, const json& run) {
        "\" title=\"click: flip between this run and the reference\"></div>"
        "<figcaption>showing <b class=\"which\">run " +
        esc(id) + "</b> (click to flip)</figcaption></figure>";
-  s += "<figure><div class=\"pane\"" + style + "><img src=\"" + url(text_of(images, "error_png")) +
-       "\" alt=\"error of " + esc(id) +
-       "\"></div><figcaption>relative error, 0 (black) .. \u22651 (yellow) "
-       "<span class=\"ramp\"></span></figcaption></figure>";
+  // A pruned results folder keeps no heat maps (sst-eval sweep writes them; prune_results.sh drops them).
+  if (!text_of(images, "error_png").empty())
+    s += "<figure><div class=\"pane\"" + style + "><img src=\"" + url(text_of(images, "error_png")) +
+         "\" alt=\"error of " + esc(id) +
+         "\"></div><figcaption>relative error, 0 (black) .. \u22651 (yellow) "
+         "<span class=\"ramp\"></span></figcaption></figure>";
   return s + "</div></div>\n";
 }
 
@@ -452,7 +459,7 @@ std::string comparison_html(const Index& index, const Scene& scene) {
 // ---- scene section, runs table, page
 
 std::string scene_html(const Index& index, const Scene& scene) {
-  std::string s = "<section class=\"scene\"><h2>" + esc(scene.name) + "</h2>\n";
+  std::string s = "<section class=\"scene\"><h2>" + esc(scene_title(scene.name)) + "</h2>\n";
   for (const std::string& id : scene.references)
     s += "<p class=\"sub\">metrics against reference <code>" + esc(id) +
          "</code>: " + esc(reference_summary(index.reference(id))) + "</p>\n";
@@ -469,7 +476,7 @@ std::string runs_table(const Index& index) {
                   "</th><th>time ms</th><th>RMSE</th><th>SSIM</th></tr></thead><tbody>\n";
   for (const json& r : runs) {
     s += "<tr>" + td("<code>" + esc(text_of(r, "id")) + "</code>", "id") + td(esc(text_of(r, "label")), "label") +
-         td(esc(text_of(r, "scene")), "label") + td(esc(text_of(r, "seed"))) + td(esc(text_of(r, "spp"))) +
+         td(esc(scene_title(text_of(r, "scene"))), "label") + td(esc(text_of(r, "seed"))) + td(esc(text_of(r, "spp"))) +
          td(fmt(number(member(r, "time_ms"), "median"))) + td(fmt(number(member(r, "metrics"), "rmse"))) +
          td(fmt(number(member(r, "metrics"), "ssim"))) + "</tr>\n";
   }
@@ -552,8 +559,23 @@ std::string make_report_html(const nlohmann::json& results) {
   return s + kScript + "</body></html>\n";
 }
 
+// Image paths whose files are gone (a results folder pruned for committing) become null, so the
+// page shows a dash instead of a broken image.
+nlohmann::json without_missing_images(nlohmann::json results, const std::string& dir) {
+  auto present = [&](const nlohmann::json& path) {
+    return path.is_string() && std::filesystem::exists(std::filesystem::path(dir) / path.get<std::string>());
+  };
+  for (nlohmann::json& run : results["runs"])
+    if (run.contains("images"))
+      for (auto& [kind, path] : run["images"].items())
+        if (!present(path)) path = nullptr;
+  for (auto& [id, ref] : results["references"].items())
+    if (ref.contains("image_png") && !present(ref["image_png"])) ref["image_png"] = nullptr;
+  return results;
+}
+
 void write_report(const nlohmann::json& results, const std::string& results_dir) {
-  write_text_atomic(results_dir + "/report.html", make_report_html(results));
+  write_text_atomic(results_dir + "/report.html", make_report_html(without_missing_images(results, results_dir)));
 }
 
 }  // namespace sst

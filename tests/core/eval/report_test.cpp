@@ -313,8 +313,33 @@ TEST(Report, WriteReportWritesReportHtmlInTheResultsFolder) {
   std::ifstream in(dir / "results" / "report.html");
   std::stringstream text;
   text << in.rdbuf();
-  EXPECT_EQ(text.str(), make_report_html(r));
+  // The fixture's images do not exist in this folder: the written page leaves them out.
+  EXPECT_NE(text.str(), make_report_html(r));
+  EXPECT_EQ(text.str().find("error.png"), std::string::npos);
+  EXPECT_NE(text.str().find("0000-pt"), std::string::npos);
   EXPECT_EQ(std::distance(fs::directory_iterator(dir / "results"), fs::directory_iterator()), 1);  // no temp file left
+  fs::remove_all(dir);
+}
+
+TEST(Report, WriteReportKeepsImagesThatExist) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("sst-report-test-kept-" + std::to_string(getpid()));
+  fs::remove_all(dir);
+  json r = fixture();
+  for (const json& run : r["runs"])
+    for (const auto& [kind, path] : run["images"].items()) {
+      fs::create_directories((dir / path.get<std::string>()).parent_path());
+      std::ofstream(dir / path.get<std::string>()) << "png";
+    }
+  for (const auto& [id, ref] : r["references"].items()) {
+    fs::create_directories((dir / ref["image_png"].get<std::string>()).parent_path());
+    std::ofstream(dir / ref["image_png"].get<std::string>()) << "png";
+  }
+  write_report(r, dir.string());
+  std::ifstream in(dir / "report.html");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_EQ(text.str(), make_report_html(r));
   fs::remove_all(dir);
 }
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <iostream>
 
 #include "core/eval/merge.h"
 #include "core/eval/metrics_check.h"
@@ -171,6 +172,7 @@ TEST(Sweep, MetricsCheckPassesOnCleanCodeAndFailsOnSwappedWeights) {
   json bad = run_sweep(config, options_in(dir / "broken"));
   CheckOutcome outcome = check_against_baseline(bad, baseline);
   EXPECT_FALSE(outcome.passed) << outcome.table;
+  std::cout << outcome.table;  // what moved, for the log
   EXPECT_NE(outcome.table.find("| slc | rmse |"), std::string::npos);
   EXPECT_EQ(outcome.table.find("| sst | rmse | ") == std::string::npos, false);
 }

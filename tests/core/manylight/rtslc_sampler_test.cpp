@@ -46,32 +46,41 @@ std::pair<uint32_t, uint32_t> leaf_range(const LightTree& t, uint32_t node) {
   return {node << shift, (node + 1) << shift};
 }
 
+// The exact leaf probabilities below `from` sum to 1, match what each traversal reports, and
+// match the observed frequencies of 200k traversals (chi-square at 1e-6). Returns the exact
+// probabilities of the leaves [lo, hi) below `from`.
+std::vector<double> check_leaf_probabilities(const LightTree& tree, uint32_t from, vec3 x, vec3 n, RtslcWeights weights,
+                                             uint32_t seed) {
+  auto [lo, hi] = leaf_range(tree, from);
+  std::vector<double> expected(hi - lo);
+  double sum = 0.0;
+  for (uint32_t l = lo; l < hi; ++l) sum += expected[l - lo] = rtslc_leaf_probability(tree, from, l, x, n, weights);
+  EXPECT_NEAR(sum, 1.0, 1e-5) << "from " << from;
+  const int samples = 200000;
+  std::vector<double> observed(hi - lo, 0.0);
+  for (int i = 0; i < samples; ++i) {
+    PixelSampler sampler(seed, from, uint32_t(i));
+    TreeSample s = rtslc_traverse(tree, from, x, n, sampler, weights);
+    if (s.node == kNoNode || s.node < lo || s.node >= hi) {
+      ADD_FAILURE() << "traversal from " << from << " ended at " << s.node;
+      return expected;
+    }
+    EXPECT_NEAR(s.probability, expected[s.node - lo], 1e-4 * expected[s.node - lo] + 1e-9);
+    observed[s.node - lo] += 1.0;
+  }
+  std::vector<double> counts = expected;
+  for (double& e : counts) e *= samples;
+  int dof = 0;
+  double chi2 = test::chi_square_statistic(observed, counts, &dof);
+  EXPECT_LT(chi2, test::chi_square_critical_1e6(dof)) << "from " << from << " dof " << dof;
+  return expected;
+}
+
 TEST(RtslcTraversal, LeafProbabilitiesSumToOneAndMatchFrequencies) {
   VplSet vpls = random_vpls(50, 1);
   LightTree tree = perfect_tree(vpls);
   const vec3 x(0.3f, -0.2f, 1.2f), n = glm::normalize(vec3(0.2f, 0.1f, -1.0f));
-  for (uint32_t from : {tree.root, 2u, 3u, 6u}) {
-    auto [lo, hi] = leaf_range(tree, from);
-    std::vector<double> expected(hi - lo);
-    double sum = 0.0;
-    for (uint32_t l = lo; l < hi; ++l) sum += expected[l - lo] = rtslc_leaf_probability(tree, from, l, x, n);
-    ASSERT_NEAR(sum, 1.0, 1e-5) << "from " << from;
-    const int samples = 200000;
-    std::vector<double> observed(hi - lo, 0.0);
-    for (int i = 0; i < samples; ++i) {
-      PixelSampler sampler(11, from, uint32_t(i));
-      TreeSample s = rtslc_traverse(tree, from, x, n, sampler);
-      ASSERT_NE(s.node, kNoNode);
-      ASSERT_GE(s.node, lo);
-      ASSERT_LT(s.node, hi);
-      ASSERT_NEAR(s.probability, expected[s.node - lo], 1e-4 * expected[s.node - lo] + 1e-9);
-      observed[s.node - lo] += 1.0;
-    }
-    for (double& e : expected) e *= samples;
-    int dof = 0;
-    double chi2 = test::chi_square_statistic(observed, expected, &dof);
-    EXPECT_LT(chi2, test::chi_square_critical_1e6(dof)) << "from " << from << " dof " << dof;
-  }
+  for (uint32_t from : {tree.root, 2u, 3u, 6u}) check_leaf_probabilities(tree, from, x, n, RtslcWeights::rtslc, 11);
 }
 
 TEST(RtslcTraversal, ChildProbabilityRules) {
@@ -98,32 +107,12 @@ TEST(RtslcTraversal, SlcWeightsLeafProbabilitiesSumToOneAndMatchFrequencies) {
   }};
   for (auto [x, n] : points) {
     for (uint32_t from : {tree.root, 2u, 3u, 6u}) {
-      auto [lo, hi] = leaf_range(tree, from);
-      std::vector<double> expected(hi - lo);
-      double sum = 0.0;
-      for (uint32_t l = lo; l < hi; ++l)
-        sum += expected[l - lo] = rtslc_leaf_probability(tree, from, l, x, n, RtslcWeights::slc);
-      ASSERT_NEAR(sum, 1.0, 1e-5) << "from " << from;
+      std::vector<double> p = check_leaf_probabilities(tree, from, x, n, RtslcWeights::slc, 13);
       // The weights are Yuksel's (slc_child_weights): at the start node P_0 = w_0 / (w_0 + w_1).
       std::array<double, 2> w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, n);
       double left = 0.0;
-      for (uint32_t l = lo; l < lo + (hi - lo) / 2; ++l) left += expected[l - lo];
+      for (size_t l = 0; l < p.size() / 2; ++l) left += p[l];
       EXPECT_NEAR(left, w[0] / (w[0] + w[1]), 1e-5) << "from " << from;
-      const int samples = 200000;
-      std::vector<double> observed(hi - lo, 0.0);
-      for (int i = 0; i < samples; ++i) {
-        PixelSampler sampler(13, from, uint32_t(i));
-        TreeSample s = rtslc_traverse(tree, from, x, n, sampler, RtslcWeights::slc);
-        ASSERT_NE(s.node, kNoNode);
-        ASSERT_GE(s.node, lo);
-        ASSERT_LT(s.node, hi);
-        ASSERT_NEAR(s.probability, expected[s.node - lo], 1e-4 * expected[s.node - lo] + 1e-9);
-        observed[s.node - lo] += 1.0;
-      }
-      for (double& e : expected) e *= samples;
-      int dof = 0;
-      double chi2 = test::chi_square_statistic(observed, expected, &dof);
-      EXPECT_LT(chi2, test::chi_square_critical_1e6(dof)) << "from " << from << " dof " << dof;
     }
   }
 }

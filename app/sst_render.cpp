@@ -9,6 +9,7 @@
 
 #include "app/cli_common.h"
 #include "app/param_flags.h"
+#include "core/render/backend.h"
 #include "core/render/method_registry.h"
 #include "core/render/render_record.h"
 #include "core/render/renderer.h"
@@ -27,6 +28,7 @@ struct Args {
   int repeat = 1;
   bool quiet = false;
   bool list_methods = false;
+  bool list_devices = false;
 };
 
 void print_methods() {
@@ -36,6 +38,17 @@ void print_methods() {
       std::printf("  --%-20s %-6s default %-8s %s\n", sst::to_flag(p.name).c_str(), p.type.c_str(),
                   p.default_value.dump().c_str(), p.help.c_str());
   }
+}
+
+// One line per Vulkan device with a compute queue, or one line saying why there is none.
+void print_devices() {
+  std::string reason;
+  std::vector<sst::DeviceInfo> devices = sst::list_vulkan_devices(&reason);
+  if (devices.empty()) std::printf("no Vulkan device: %s\n", reason.c_str());
+  for (const sst::DeviceInfo& d : devices)
+    std::printf("%d: %s (%s), Vulkan %s, max storage buffer %.0f MiB%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
+                sst::api_version_string(d.api_version).c_str(), double(d.max_storage_buffer_range) / (1024.0 * 1024.0),
+                d.driver.empty() ? "" : ", driver ", d.driver.c_str());
 }
 
 // Splits the given flags into render options and the chosen method's parameters; a flag that
@@ -61,6 +74,10 @@ sst::Scene load_scene(const Args& args) {
 int run(const Args& args, const sst::app::ParamFlags& flags) {
   if (args.list_methods) {
     print_methods();
+    return 0;
+  }
+  if (args.list_devices) {
+    print_devices();
     return 0;
   }
   if (args.repeat < 1) throw sst::Error("--repeat must be >= 1");
@@ -114,6 +131,7 @@ int main(int argc, char** argv) {
   app.add_option("--repeat", args.repeat, "render this many times; timings are medians with min and max");
   app.add_flag("-q,--quiet", args.quiet, "no progress or summary on stderr");
   app.add_flag("--list-methods", args.list_methods, "list methods and their parameters");
+  app.add_flag("--list-devices", args.list_devices, "list the Vulkan devices (for --backend vulkan) and exit");
   flags.add(app, sst::param_table<sst::RenderOptions>(), "Render options");
   for (const sst::MethodInfo& m : sst::method_registry()) flags.add(app, m.params, "Method '" + m.name + "'");
   CLI11_PARSE(app, argc, argv);

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/render/backend.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -12,7 +13,9 @@ void validate(const RenderOptions& o) {
   if (o.spp < 1) throw Error("spp must be >= 1 (got " + std::to_string(o.spp) + ")");
   if (o.threads < 0) throw Error("threads must be >= 0");
   if (!std::isfinite(o.exposure)) throw Error("exposure must be finite");
-  if (o.backend != "cpu") throw Error("backend '" + o.backend + "' is not available (this build has: cpu)");
+  // Only the name is checked here; resolve_backend (core/render/backend.h) decides what runs.
+  if (o.backend != "cpu" && o.backend != "vulkan" && o.backend != "auto")
+    throw Error("unknown backend '" + o.backend + "' (valid: " + backend_names() + ")");
 }
 
 }  // namespace sst

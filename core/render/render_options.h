@@ -21,7 +21,7 @@ struct RenderOptions {
   template <class V>
   void visit(V&& v) {
     v("method", method, "rendering method (see --list-methods)");
-    v("backend", backend, "cpu (Embree) or vulkan");
+    v("backend", backend, "cpu (Embree), vulkan (device selection only, issue 5) or auto (vulkan when it can run the method, else cpu)");
     v("width", width, "image width in pixels (0: from height and the camera's aspect ratio)");
     v("height", height, "image height in pixels (0: from width and the camera's aspect ratio)");
     v("spp", spp, "samples per pixel (pt: camera paths; many-light methods: indirect samples)");

@@ -2,10 +2,12 @@
 
 #include <tbb/global_control.h>
 
+#include <cstdio>
 #include <memory>
 
 #include "core/accel/embree_accel.h"
 #include "core/lights/light_sampler.h"
+#include "core/render/backend.h"
 #include "core/render/camera.h"
 #include "core/render/method_registry.h"
 
@@ -16,6 +18,10 @@ RenderResult render_frame(const Scene& scene, const RenderOptions& options, cons
   RenderResult result;
   result.options = options;
   validate(result.options);
+  // The backend that runs ("auto" becomes a concrete one; "vulkan" fails with one line until issue 5).
+  std::string backend_note;
+  result.options.backend = resolve_backend(options.backend, 0, &backend_note);
+  if (!backend_note.empty() && !quiet) std::fprintf(stderr, "note: %s\n", backend_note.c_str());
   // Create the method first: a bad parameter fails before any expensive work.
   std::unique_ptr<Method> method = create_method(options.method, method_params);
   result.method_params = method->params();

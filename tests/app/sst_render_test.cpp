@@ -85,6 +85,32 @@ TEST(SstRender, ListMethodsShowsParameterTables) {
   EXPECT_NE(r.output.find("--max-bounces"), std::string::npos);
 }
 
+TEST(SstRender, ListDevicesPrintsDevicesOrReason) {
+  auto r = test::run_command(render_cmd("--list-devices"));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(r.output.empty());
+  bool listed = r.output.rfind("0: ", 0) == 0 && r.output.find("max storage buffer") != std::string::npos;
+  bool reason = r.output.rfind("no Vulkan device: ", 0) == 0;
+  EXPECT_TRUE(listed || reason) << r.output;
+}
+
+TEST(SstRender, BackendChoices) {
+  auto dir = test::temp_dir();
+  std::string out = " -o " + (dir / "b.exr").string() + " --width 8 --spp 1";
+  // auto runs on the CPU (no Vulkan method yet) and says so; the record names the backend that ran.
+  auto r = test::run_command(render_cmd("--backend auto" + out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("note: vulkan backend has no methods yet (issue 5); using cpu"), std::string::npos) << r.output;
+  EXPECT_EQ(read_json_file((dir / "b.json").string())["device"]["backend"], "cpu");
+  // vulkan is one line: not implemented yet, or no device (with the reason).
+  auto v = test::run_command(render_cmd("--backend vulkan" + out + " -q"));
+  expect_one_line_error(v, "backend 'vulkan': ");
+  EXPECT_TRUE(v.output.find("not implemented yet") != std::string::npos ||
+              v.output.find("no Vulkan device") != std::string::npos)
+      << v.output;
+  expect_one_line_error(test::run_command(render_cmd("--backend metal" + out + " -q")), "valid: cpu, vulkan, auto");
+}
+
 }  // namespace
 }  // namespace sst
 

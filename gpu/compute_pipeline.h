@@ -1,0 +1,47 @@
+// One compute shader as a pipeline: its storage buffers are bindings 0..n-1 of set 0, its
+// parameters a push-constant block. dispatch() records, submits and waits, and reports the GPU
+// time of the dispatch from timestamp queries.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <string>
+#include <vector>
+
+#include "gpu/gpu_buffer.h"
+#include "gpu/vulkan_context.h"
+
+namespace sst::gpu {
+
+class ComputePipeline {
+ public:
+  // `shader`: an embedded shader's name (shader_library.h); sst::Error when it is missing.
+  ComputePipeline(const VulkanContext& context, const std::string& shader, uint32_t buffer_count,
+                  uint32_t push_constant_bytes);
+  ~ComputePipeline();
+  ComputePipeline(const ComputePipeline&) = delete;
+  ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+  // Runs groups_x * groups_y workgroups with `buffers` bound in order and `push` (of the size
+  // given at creation) as push constants. Waits at most `timeout_s`: a device that hangs or is
+  // lost is an sst::Error, never a hung process. Returns the GPU time in ms (timestamps).
+  double dispatch(const std::vector<const GpuBuffer*>& buffers, const void* push, uint32_t groups_x,
+                  uint32_t groups_y = 1, double timeout_s = 120.0);
+
+ private:
+  const VulkanContext& context_;
+  std::string name_;
+  uint32_t buffer_count_, push_bytes_;
+  VkShaderModule module_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkCommandPool command_pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer commands_ = VK_NULL_HANDLE;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  float timestamp_period_ns_ = 1.0f;
+};
+
+}  // namespace sst::gpu

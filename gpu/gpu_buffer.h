@@ -1,0 +1,47 @@
+// A storage buffer the host can map: HOST_VISIBLE | HOST_COHERENT memory, DEVICE_LOCAL too when the
+// device offers such a type (integrated GPUs, lavapipe, resizable BAR), else plain host memory.
+// Enough for the first backend; staging uploads to device-only memory are the step after.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstring>
+#include <span>
+
+#include "gpu/vulkan_context.h"
+
+namespace sst::gpu {
+
+class GpuBuffer {
+ public:
+  // sst::Error naming the size when it exceeds the device's storage-buffer range (lavapipe:
+  // 128 MiB) or memory runs out; never a silent overrun.
+  GpuBuffer(const VulkanContext& context, size_t bytes);
+  ~GpuBuffer();
+  GpuBuffer(const GpuBuffer&) = delete;
+  GpuBuffer& operator=(const GpuBuffer&) = delete;
+
+  VkBuffer handle() const { return buffer_; }
+  size_t size() const { return bytes_; }
+  void* data() { return mapped_; }
+  template <class T>
+  void upload(std::span<const T> values) {
+    check_fits(values.size_bytes());
+    std::memcpy(mapped_, values.data(), values.size_bytes());
+  }
+  template <class T>
+  void download(std::span<T> values) const {
+    check_fits(values.size_bytes());
+    std::memcpy(values.data(), mapped_, values.size_bytes());
+  }
+
+ private:
+  void check_fits(size_t bytes) const;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkBuffer buffer_ = VK_NULL_HANDLE;
+  VkDeviceMemory memory_ = VK_NULL_HANDLE;
+  void* mapped_ = nullptr;
+  size_t bytes_ = 0;
+};
+
+}  // namespace sst::gpu

@@ -1,0 +1,48 @@
+// The Vulkan instance, the chosen physical device and a logical device with one compute queue
+// (issue 5: groundwork, no rendering yet). Plain Vulkan C API; built only when the Vulkan loader is
+// found (SST_HAVE_VULKAN). Backend-neutral callers use core/render/backend.h instead.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <vector>
+
+#include "core/render/backend.h"
+
+namespace sst::gpu {
+
+// The devices with a compute queue, in index order (a temporary instance is created and destroyed).
+// Throws sst::Error with one line when no instance can be created (no driver, Vulkan < 1.2).
+std::vector<DeviceInfo> enumerate_devices();
+
+// Owns a Vulkan 1.2 instance (with VK_LAYER_KHRONOS_validation in debug builds when installed),
+// the physical device `device_index` (see enumerate_devices), a logical device and its first
+// compute queue. Everything is destroyed in the destructor. Throws sst::Error (one line) when there
+// is no driver or no device, or the index does not exist.
+class VulkanContext {
+ public:
+  explicit VulkanContext(int device_index = 0);
+  ~VulkanContext();
+  VulkanContext(const VulkanContext&) = delete;
+  VulkanContext& operator=(const VulkanContext&) = delete;
+
+  const DeviceInfo& info() const { return info_; }
+  bool validation_enabled() const { return validation_; }
+  VkInstance instance() const { return instance_; }
+  VkPhysicalDevice physical_device() const { return physical_device_; }
+  VkDevice device() const { return device_; }
+  VkQueue compute_queue() const { return compute_queue_; }
+  uint32_t compute_queue_family() const { return compute_queue_family_; }
+
+ private:
+  void destroy();
+
+  DeviceInfo info_;
+  bool validation_ = false;
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_device_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue compute_queue_ = VK_NULL_HANDLE;
+  uint32_t compute_queue_family_ = 0;
+};
+
+}  // namespace sst::gpu

@@ -1,0 +1,82 @@
+// The compute-shader plumbing on whatever Vulkan device is present (lavapipe in CI): buffers,
+// an embedded shader, dispatch, timestamps, the limits. Skips where there is no device; compiled
+// only when the Vulkan backend is (SST_HAVE_VULKAN).
+#include <gtest/gtest.h>
+#ifdef SST_HAVE_VULKAN
+
+#include <cstring>
+#include <vector>
+
+#include "core/render/backend.h"
+#include "core/rng/hash_rng.h"
+#include "core/rng/sobol_sampler.h"
+#include "core/util/error.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/gpu_buffer.h"
+#include "gpu/shader_library.h"
+#include "gpu/vulkan_context.h"
+
+namespace sst::gpu {
+namespace {
+
+#define SKIP_WITHOUT_VULKAN()                                              \
+  do {                                                                     \
+    std::string reason;                                                    \
+    if (list_vulkan_devices(&reason).empty()) GTEST_SKIP() << reason;      \
+    if (embedded_spirv("rng_test").empty()) GTEST_SKIP() << "no shaders"; \
+  } while (0)
+
+uint32_t bits(float f) {
+  uint32_t b;
+  std::memcpy(&b, &f, 4);
+  return b;
+}
+
+TEST(ComputePipeline, GlslRngsDrawTheSameBitsAsTheCpp) {
+  SKIP_WITHOUT_VULKAN();
+  VulkanContext context(0);
+  const uint32_t count = 4096, seed = 12345;
+  GpuBuffer out(context, count * 8 * sizeof(uint32_t));
+  ComputePipeline pipeline(context, "rng_test", 1, 8);
+  uint32_t push[2] = {seed, count};
+  double ms = pipeline.dispatch({&out}, push, (count + 63) / 64);
+  EXPECT_GE(ms, 0.0);
+  std::vector<uint32_t> gpu(count * 8);
+  out.download(std::span<uint32_t>(gpu));
+  for (uint32_t i = 0; i < count; ++i) {
+    HashRng rng(seed, i, 7, 3);
+    PixelSampler ps(seed, i, i * 3);
+    vec2 a = ps.get2d(), b = ps.get2d();
+    uint32_t expected[8] = {pcg_hash(i), rng.next_bits(), bits(rng.next()), bits(a.x),
+                            bits(a.y),   bits(b.x),       bits(b.y),        sobol_dimension1(i)};
+    for (int k = 0; k < 8; ++k) ASSERT_EQ(gpu[i * 8 + k], expected[k]) << "index " << i << " value " << k;
+  }
+}
+
+TEST(ComputePipeline, BuffersBeyondTheDeviceLimitAreRefusedWithAMessage) {
+  SKIP_WITHOUT_VULKAN();
+  VulkanContext context(0);
+  size_t limit = context.info().max_storage_buffer_range;
+  try {
+    GpuBuffer too_big(context, limit + 1);
+    FAIL() << "no error for " << limit + 1 << " bytes";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("exceeds the device's storage-buffer limit"), std::string::npos) << e.what();
+  }
+  GpuBuffer small(context, 64);
+  std::vector<uint32_t> many(100);
+  EXPECT_THROW(small.upload(std::span<const uint32_t>(many)), Error);
+}
+
+TEST(ComputePipeline, WrongBindingsAndMissingShadersAreErrors) {
+  SKIP_WITHOUT_VULKAN();
+  VulkanContext context(0);
+  EXPECT_THROW(ComputePipeline(context, "no_such_shader", 1, 0), Error);
+  ComputePipeline pipeline(context, "rng_test", 1, 8);
+  uint32_t push[2] = {0, 0};
+  EXPECT_THROW(pipeline.dispatch({}, push, 1), Error);
+}
+
+}  // namespace
+}  // namespace sst::gpu
+#endif  // SST_HAVE_VULKAN

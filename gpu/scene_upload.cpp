@@ -1,0 +1,191 @@
+// sst_gpu is built without sst_core's compile definitions; keep glm's types declared as they are
+// everywhere else in the tool.
+#ifndef GLM_FORCE_XYZW_ONLY
+#define GLM_FORCE_XYZW_ONLY 1
+#endif
+#include "gpu/scene_upload.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <iterator>
+#include <limits>
+
+#include "core/util/error.h"
+
+namespace sst::gpu {
+namespace {
+
+uint32_t wrap_code(Wrap w) {
+  switch (w) {
+    case Wrap::ClampToEdge: return SCENE_WRAP_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat: return SCENE_WRAP_MIRRORED_REPEAT;
+    case Wrap::Repeat:
+    default: return SCENE_WRAP_REPEAT;
+  }
+}
+
+// The CPU samples an index outside the table as 1 (texture_or_one); -1 does the same on the GPU.
+int texture_index(int index, size_t texture_count) {
+  return index >= 0 && size_t(index) < texture_count ? index : -1;
+}
+
+std::string megabytes(size_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f MB", double(bytes) / 1e6);
+  return text;
+}
+
+}  // namespace
+
+size_t PackedScene::bytes() const {
+  return vertices.size() * sizeof(glsl::SceneVertex) + triangles.size() * sizeof(glsl::SceneTriangle) +
+         materials.size() * sizeof(glsl::SceneMaterial) + textures.size() * sizeof(glsl::SceneTexture) +
+         texels.size() * sizeof(uint32_t);
+}
+
+PackedScene pack_scene(const Scene& scene) {
+  const std::string where = "scene " + scene.source + ": ";
+  const size_t n = scene.positions.size();
+  if (scene.normals.size() != n)
+    throw Error(where + std::to_string(scene.normals.size()) + " normals for " + std::to_string(n) + " vertices");
+  if (!scene.uvs.empty() && scene.uvs.size() != n)
+    throw Error(where + std::to_string(scene.uvs.size()) + " uvs for " + std::to_string(n) + " vertices");
+  if (scene.triangle_material.size() != scene.triangles.size())
+    throw Error(where + std::to_string(scene.triangle_material.size()) + " triangle materials for " +
+                std::to_string(scene.triangles.size()) + " triangles");
+  if (n > std::numeric_limits<uint32_t>::max()) throw Error(where + "more than 2^32 vertices");
+
+  PackedScene out;
+  out.vertices.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    glsl::SceneVertex& v = out.vertices[i];
+    v.position = scene.positions[i];
+    v.normal = scene.normals[i];
+    const vec2 uv = scene.uvs.empty() ? vec2(0.0f) : scene.uvs[i];
+    v.u = uv.x;
+    v.v = uv.y;
+  }
+
+  out.triangles.resize(scene.triangles.size());
+  for (size_t i = 0; i < scene.triangles.size(); ++i) {
+    const uvec3& t = scene.triangles[i];
+    const uint32_t m = scene.triangle_material[i];
+    if (t.x >= n || t.y >= n || t.z >= n)
+      throw Error(where + "triangle " + std::to_string(i) + " names a vertex beyond the " + std::to_string(n));
+    if (m >= scene.materials.size())
+      throw Error(where + "triangle " + std::to_string(i) + " names material " + std::to_string(m) + " of " +
+                  std::to_string(scene.materials.size()));
+    out.triangles[i] = {t.x, t.y, t.z, m};
+  }
+
+  const size_t texture_count = scene.textures.size();
+  out.materials.resize(scene.materials.size());
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    glsl::SceneMaterial& g = out.materials[i];
+    g.base_color = m.base_color;
+    g.metallic = m.metallic;
+    g.emission = m.emission;
+    g.roughness = m.roughness;
+    g.base_color_texture = texture_index(m.base_color_texture, texture_count);
+    g.metallic_roughness_texture = texture_index(m.metallic_roughness_texture, texture_count);
+    g.emissive_texture = texture_index(m.emissive_texture, texture_count);
+    g.double_sided = m.double_sided ? 1u : 0u;
+  }
+
+  // Texel storage first, so that the texel array is allocated once.
+  size_t words = SCENE_TEXELS_FIRST_TEXEL;
+  for (size_t i = 0; i < texture_count; ++i) {
+    const Texture& t = scene.textures[i];
+    const size_t count = t.width > 0 && t.height > 0 ? t.texel_count() : 0;
+    const bool is_float = !t.texels.empty();  // Texture::texel prefers float texels
+    const size_t have = is_float ? t.texels.size() : t.rgba8.size();
+    if (have < count)
+      throw Error(where + "texture " + std::to_string(i) + " has " + std::to_string(have) + " texels for " +
+                  std::to_string(t.width) + " x " + std::to_string(t.height));
+    words += is_float ? 4 * count : count;
+  }
+  if (words > std::numeric_limits<uint32_t>::max())
+    throw Error(where + "textures of " + megabytes(4 * words) + " exceed 32-bit texel offsets");
+  out.texels.reserve(words);
+  out.texels.insert(out.texels.end(), std::begin(glsl::scene_srgb_decode_bits), std::end(glsl::scene_srgb_decode_bits));
+  out.texels.insert(out.texels.end(), std::begin(glsl::scene_unorm8_bits), std::end(glsl::scene_unorm8_bits));
+  static_assert(SCENE_TEXELS_SRGB_TABLE == 0 && SCENE_TEXELS_UNORM8_TABLE == 256 && SCENE_TEXELS_FIRST_TEXEL == 512);
+  out.textures.resize(texture_count);
+  for (size_t i = 0; i < texture_count; ++i) {
+    const Texture& t = scene.textures[i];
+    const size_t count = t.width > 0 && t.height > 0 ? t.texel_count() : 0;
+    glsl::SceneTexture& g = out.textures[i];
+    g.texel_offset = uint32_t(out.texels.size());
+    g.width = std::max(t.width, 0);
+    g.height = std::max(t.height, 0);
+    g.wrap_s = wrap_code(t.wrap_s);
+    g.wrap_t = wrap_code(t.wrap_t);
+    g.nearest = t.nearest ? 1u : 0u;
+    g.reserved = 0u;
+    if (!t.texels.empty()) {
+      g.format = SCENE_TEXTURE_RGBA32F;
+      const size_t first = out.texels.size();
+      out.texels.resize(first + 4 * count);
+      std::memcpy(out.texels.data() + first, t.texels.data(), 4 * count * sizeof(float));
+    } else {
+      g.format = t.srgb ? SCENE_TEXTURE_RGBA8_SRGB : SCENE_TEXTURE_RGBA8;
+      out.texels.insert(out.texels.end(), t.rgba8.begin(), t.rgba8.begin() + std::ptrdiff_t(count));
+    }
+  }
+  return out;
+}
+
+std::string describe(const PackedScene& packed) {
+  int max_side = 0;
+  for (const glsl::SceneTexture& t : packed.textures) max_side = std::max({max_side, t.width, t.height});
+  std::string text = "scene on the GPU: " + std::to_string(packed.vertices.size()) + " vertices, " +
+                     std::to_string(packed.triangles.size()) + " triangles, " +
+                     std::to_string(packed.materials.size()) + " materials, " +
+                     std::to_string(packed.textures.size()) + " textures";
+  if (!packed.textures.empty()) text += " (largest side " + std::to_string(max_side) + ")";
+  return text + ", " + megabytes(packed.bytes());
+}
+
+#ifdef SST_HAVE_VULKAN
+namespace {
+
+template <class T>
+std::unique_ptr<GpuBuffer> upload(const VulkanContext& context, const std::vector<T>& values, const char* what) {
+  std::unique_ptr<GpuBuffer> buffer;
+  try {
+    buffer = std::make_unique<GpuBuffer>(context, values.size() * sizeof(T));
+  } catch (const Error& e) {
+    throw Error(std::string("scene ") + what + " (" + std::to_string(values.size()) + "): " + e.what());
+  }
+  buffer->upload(std::span<const T>(values));
+  return buffer;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const VulkanContext& context, const Scene& scene) : GpuScene(context, pack_scene(scene)) {}
+
+GpuScene::GpuScene(const VulkanContext& context, const PackedScene& packed)
+    : vertices_(upload(context, packed.vertices, "vertices")),
+      triangles_(upload(context, packed.triangles, "triangles")),
+      materials_(upload(context, packed.materials, "materials")),
+      textures_(upload(context, packed.textures, "textures")),
+      texels_(upload(context, packed.texels, "texels")),
+      vertex_count_(packed.vertices.size()),
+      triangle_count_(packed.triangles.size()),
+      material_count_(packed.materials.size()),
+      texture_count_(packed.textures.size()),
+      texel_words_(packed.texels.size()) {}
+
+std::vector<const GpuBuffer*> GpuScene::buffers() const {
+  return {vertices_.get(), triangles_.get(), materials_.get(), textures_.get(), texels_.get()};
+}
+
+size_t GpuScene::bytes() const {
+  return vertices_->size() + triangles_->size() + materials_->size() + textures_->size() + texels_->size();
+}
+#endif  // SST_HAVE_VULKAN
+
+}  // namespace sst::gpu

@@ -11,6 +11,13 @@ class PinholeCamera {
   // (px, py) in pixels, continuous: pixel x covers [x, x+1). Unit-length direction.
   Ray generate(float px, float py) const;
 
+  // What generate() computes from, for the GPU port (gpu/shaders/camera.glsl).
+  struct Basis {
+    vec3 eye, right, up, forward;
+    float tan_half_y, aspect;
+  };
+  Basis basis() const { return {eye_, right_, up_, forward_, tan_half_y_, aspect_}; }
+
  private:
   vec3 eye_, right_, up_, forward_;
   float tan_half_y_ = 0.0f, aspect_ = 1.0f;

@@ -1,0 +1,56 @@
+#include "gpu/gbuffer_pass.h"
+
+#include "gpu/shared/frame_layout.h"
+
+namespace sst::gpu {
+
+GpuBvh::GpuBvh(const VulkanContext& context, const FlatBvh& bvh)
+    : nodes_(context, bvh.nodes.size() * sizeof(glsl::BvhNode)),
+      triangles_(context, bvh.triangles.size() * sizeof(glsl::BvhTriangle)) {
+  nodes_.upload(std::span<const glsl::BvhNode>(bvh.nodes));
+  triangles_.upload(std::span<const glsl::BvhTriangle>(bvh.triangles));
+}
+
+GBufferImages render_gbuffer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
+                             const PinholeCamera& camera, int width, int height, uint32_t seed, int spp) {
+  PinholeCamera::Basis b = camera.basis();
+  glsl::FrameParams frame{};
+  frame.eye = b.eye;
+  frame.tan_half_y = b.tan_half_y;
+  frame.right = b.right;
+  frame.aspect = b.aspect;
+  frame.up = b.up;
+  frame.width = uint32_t(width);
+  frame.forward = b.forward;
+  frame.height = uint32_t(height);
+  frame.seed = seed;
+  frame.spp = uint32_t(spp);
+  frame.sample_offset = 0;
+
+  const size_t pixels = size_t(width) * size_t(height);
+  GpuBuffer out(context, pixels * sizeof(glsl::GBufferTexel));
+  std::vector<const GpuBuffer*> buffers = scene.buffers();
+  for (const GpuBuffer* buffer : bvh.buffers()) buffers.push_back(buffer);
+  buffers.push_back(&out);
+  ComputePipeline pipeline(context, "gbuffer", uint32_t(buffers.size()), sizeof frame);
+  GBufferImages images;
+  images.gpu_ms = pipeline.dispatch(buffers, &frame, (uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
+
+  std::vector<glsl::GBufferTexel> texels(pixels);
+  out.download(std::span<glsl::GBufferTexel>(texels));
+  images.albedo = Image(width, height);
+  images.normal = Image(width, height);
+  images.emission = Image(width, height);
+  images.depth = Image(width, height, 1);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glsl::GBufferTexel& t = texels[size_t(y) * width + x];
+      images.albedo.set_rgb(x, y, t.albedo);
+      images.normal.set_rgb(x, y, t.normal);
+      images.emission.set_rgb(x, y, t.emission);
+      images.depth.at(x, y, 0) = t.depth;
+    }
+  return images;
+}
+
+}  // namespace sst::gpu

@@ -1,0 +1,55 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The first-hit pass (G-buffer): per pixel and sample, the camera ray of core/render/camera.cpp
+// jittered by the pixel's Sobol sample (as the CPU's pixel loops do), traced through the flat BVH,
+// turned into a Surface, and averaged into the AOVs the CPU's FrameOutput has (albedo, normal,
+// depth) plus the emission the camera sees.
+// Bindings: 0..4 the scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7 GBufferTexel output.
+#include "gpu/shared/scene_layout.h"
+#include "gpu/shared/bvh_layout.h"
+#include "gpu/shared/frame_layout.h"
+SCENE_BUFFERS(0)
+layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
+layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+layout(std430, binding = 7) writeonly buffer GBuffer { GBufferTexel gbuffer[]; };
+layout(push_constant) uniform Push { FrameParams frame; };
+#define BVH_NODE(i) bvh_nodes[i]
+#define BVH_TRIANGLE(i) bvh_triangles[i]
+#include "gpu/shared/bvh_traverse.h"
+#include "gpu/shaders/surface.glsl"
+#include "gpu/shaders/sobol_sampler.glsl"
+#include "gpu/shaders/camera.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void main() {
+  uvec2 xy = gl_GlobalInvocationID.xy;
+  if (xy.x >= frame.width || xy.y >= frame.height) return;
+  uint pixel = xy.y * frame.width + xy.x;
+  vec3 albedo = vec3(0.0), normal = vec3(0.0), emission = vec3(0.0);
+  float depth = 0.0;
+  uint hits = 0u;
+  const float infinity = uintBitsToFloat(0x7F800000u);
+  for (uint i = 0u; i < frame.spp; ++i) {
+    PixelSampler ps = pixel_sampler(frame.seed, pixel, frame.sample_offset + i);
+    vec2 jitter = pixel_sampler_get2d(ps);
+    vec3 dir = camera_direction(frame, float(xy.x) + jitter.x, float(xy.y) + jitter.y);
+    BvhHit hit = bvh_intersect(frame.eye, dir, 0.0, infinity);
+    if (hit.triangle >= BVH_STACK_OVERFLOW) continue;  // a miss (or, never, an overflow)
+    Surface s = make_surface(hit.triangle, vec2(hit.u, hit.v), dir);
+    albedo += s.base_color;
+    normal += s.ns;
+    depth += hit.t * length(dir);
+    emission += s.emission;
+    ++hits;
+  }
+  float inv = 1.0 / float(frame.spp);
+  GBufferTexel texel;
+  texel.albedo = albedo * inv;
+  texel.depth = depth * inv;
+  texel.normal = dot(normal, normal) > 0.0 ? normalize(normal) : normal;
+  texel.hit_fraction = float(hits) * inv;
+  texel.emission = emission * inv;
+  texel.pad1 = 0.0;
+  gbuffer[pixel] = texel;
+}

@@ -4,12 +4,10 @@
 #include <map>
 #include <sstream>
 
+#include "core/eval/json_fields.h"
+
 namespace sst {
 namespace {
-
-double num(const nlohmann::json& j, const char* key) {
-  return j.contains(key) && j[key].is_number() ? j[key].get<double>() : NAN;
-}
 
 std::string fmt(double v) {
   char text[32];
@@ -64,12 +62,12 @@ CheckOutcome check_against_baseline(const nlohmann::json& fresh, const nlohmann:
     }
     const nlohmann::json& f = *it->second;
     int seeds = b.value("seeds", 1);
-    std::string times = fmt(num(b, "time_ms_median")) + " -> " + fmt(num(f, "time_ms_median"));
-    double rmse_b = num(b, "rmse_median"), rmse_f = num(f, "rmse_median");
+    std::string times = fmt(number(b, "time_ms_median")) + " -> " + fmt(number(f, "time_ms_median"));
+    double rmse_b = number(b, "rmse_median"), rmse_f = number(f, "rmse_median");
     // SSIM: compare 1 - ssim, the dissimilarity, so that the relative floor scales with the error.
-    double dssim_b = 1.0 - num(b, "ssim_median"), dssim_f = 1.0 - num(f, "ssim_median");
-    Comparison rmse = compare(rmse_b, rmse_f, num(b, "rmse_robust_std"), seeds, p);
-    Comparison ssim = compare(dssim_b, dssim_f, num(b, "ssim_robust_std"), seeds, p);
+    double dssim_b = 1.0 - number(b, "ssim_median"), dssim_f = 1.0 - number(f, "ssim_median");
+    Comparison rmse = compare(rmse_b, rmse_f, number(b, "rmse_robust_std"), seeds, p);
+    Comparison ssim = compare(dssim_b, dssim_f, number(b, "ssim_robust_std"), seeds, p);
     t << "| " << name << " | rmse | " << fmt(rmse_b) << " | " << fmt(rmse_f) << " | " << change(rmse_b, rmse_f) << " | "
       << fmt(rmse.tolerance) << " | " << rmse.status << " | " << times << " |\n";
     t << "| " << name << " | 1-ssim | " << fmt(dssim_b) << " | " << fmt(dssim_f) << " | " << change(dssim_b, dssim_f)

@@ -1,4 +1,5 @@
 #include "core/eval/report.h"
+#include "core/eval/json_fields.h"
 
 #include <filesystem>
 
@@ -24,16 +25,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 const char* const kDash = "\u2014";
 
 // ---- tolerant JSON access: a missing or null field is a dash in the page, not an exception
-
-const json& member(const json& j, const char* key) {
-  static const json null_value;
-  if (!j.is_object()) return null_value;
-  auto it = j.find(key);
-  return it == j.end() ? null_value : *it;
-}
-
-double number(const json& j) { return j.is_number() ? j.get<double>() : kNaN; }
-double number(const json& j, const char* key) { return number(member(j, key)); }
 
 // Strings as they are, other values as JSON text (numbers, booleans), null as "".
 std::string text_of(const json& j) {

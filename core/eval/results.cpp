@@ -7,10 +7,12 @@
 #include <set>
 #include <sstream>
 
+#include "core/eval/json_fields.h"
 #include "core/eval/report.h"
 #include "core/image/image.h"
 #include "core/util/json_io.h"
 #include "core/util/machine_info.h"
+#include "core/util/statistics.h"
 
 namespace fs = std::filesystem;
 
@@ -18,8 +20,6 @@ namespace sst {
 namespace {
 
 double median_time(const nlohmann::json& run) { return run["time_ms"]["median"].get<double>(); }
-
-double number(const nlohmann::json& j, double fallback = NAN) { return j.is_number() ? j.get<double>() : fallback; }
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
@@ -83,12 +83,6 @@ std::pair<double, double> bias_and_variance(const std::vector<const nlohmann::js
   return {std::max(mean2 - variance / double(n), 0.0), variance};
 }
 
-double median_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // A metric over the seeds of one sweep point: mean and sample std, and the robust pair the CI
 // check uses (median, and 1.4826 x the median absolute deviation, which estimates the std of a
 // normal distribution but ignores a seed hit by a rare firefly). Stds are NaN for one seed.
@@ -96,14 +90,14 @@ void add_seed_statistics(nlohmann::json& group, const std::string& name, const s
   double mean = 0.0, s = 0.0;
   for (double x : v) mean += x / double(v.size());
   for (double x : v) s += (x - mean) * (x - mean);
-  double median = median_of(v);
+  double mid = median(v);
   std::vector<double> deviations;
-  for (double x : v) deviations.push_back(std::abs(x - median));
+  for (double x : v) deviations.push_back(std::abs(x - mid));
   bool several = v.size() > 1;
   group[name + "_mean"] = finite_or_null(mean);
   group[name + "_std"] = finite_or_null(several ? std::sqrt(s / double(v.size() - 1)) : NAN);
-  group[name + "_median"] = finite_or_null(median);
-  group[name + "_robust_std"] = finite_or_null(several ? 1.4826 * median_of(deviations) : NAN);
+  group[name + "_median"] = finite_or_null(mid);
+  group[name + "_robust_std"] = finite_or_null(several ? 1.4826 * median(deviations) : NAN);
 }
 
 nlohmann::json make_group(const std::string& name, const std::vector<const nlohmann::json*>& runs, const std::string& dir) {
@@ -120,7 +114,7 @@ nlohmann::json make_group(const std::string& name, const std::vector<const nlohm
   nlohmann::json g = {{"group", name},           {"label", first["label"]},     {"scene", first["scene"]},
                       {"method", first["method"]}, {"variant", first["variant"]}, {"axes", first["axes"]},
                       {"spp", first["spp"]},     {"runs", ids},                 {"seeds", n},
-                      {"time_ms_median", median_of(times)}, {"bias2", nullptr}, {"variance", nullptr},
+                      {"time_ms_median", median(times)}, {"bias2", nullptr}, {"variance", nullptr},
                       {"comparison_set", comparison_set(first)}};
   add_seed_statistics(g, "rmse", rmse);
   add_seed_statistics(g, "ssim", ssim);

@@ -6,8 +6,10 @@
 
 #include "core/metrics/metrics.h"
 #include "core/render/render_record.h"
+#include "core/scene/scene_summary.h"
 #include "core/util/json_io.h"
 #include "core/util/params.h"
+#include "core/util/statistics.h"
 
 namespace fs = std::filesystem;
 
@@ -21,17 +23,6 @@ RenderResult render_run(const Scene& scene, const RunSpec& run, int spp) {
   params_from_json(options, run.options, "run " + run.id);
   if (spp > 0) options.spp = spp;
   return render_frame(scene, options, run.method_params, true);
-}
-
-double median(std::vector<double> ms) {
-  std::sort(ms.begin(), ms.end());
-  size_t n = ms.size();
-  return n % 2 ? ms[n / 2] : 0.5 * (ms[n / 2 - 1] + ms[n / 2]);
-}
-
-nlohmann::json time_statistics(const std::vector<double>& ms) {
-  return {{"median", median(ms)}, {"min", *std::min_element(ms.begin(), ms.end())},
-          {"max", *std::max_element(ms.begin(), ms.end())}};
 }
 
 // One correction of the calibrated spp when the measured median misses the budget by more than
@@ -117,20 +108,17 @@ nlohmann::json execute_run(const Scene& scene, const RunSpec& run, const RunRefe
       {"calibration", calibration},
       {"spp", last.options.spp},
       {"repeat", run.repeat},
-      {"time_ms", time_statistics(frame_times)},
+      {"time_ms", median_min_max(frame_times)},
       {"stages", stage_statistics(timers)},
       {"counters", last.frame.counters.to_json(frame_ms(last))},
-      {"method_counters", last.frame.method_counters},
+      {"device", device_record(last.options)},
+      {"scene_summary", scene_summary(scene, last.options.diffuse_only)},
       {"metrics", to_json(metrics)},
       {"images",
        {{"exr", "runs/" + run.id + "/image.exr"}, {"png", "runs/" + run.id + "/image.png"}, {"error_png", "runs/" + run.id + "/error.png"}}},
       {"spec_hash", run.spec_hash},
   };
-  nlohmann::json render_record = make_render_record("sst-eval", scene, renders, StageTimer(), StageTimer());
-  record["device"] = render_record["device"];
-  record["scene_summary"] = render_record["scene"];
-  record["counters"]["method"] = record["method_counters"];
-  record.erase("method_counters");
+  record["counters"]["method"] = last.frame.method_counters;
   write_json_atomic((dir / "run.json").string(), record);
   return record;
 }

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "core/eval/json_fields.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -17,8 +18,6 @@ std::string fixed(double v, int significant = 4) {
   std::snprintf(text, sizeof text, "%.*g", significant, v);
   return text;
 }
-
-double num(const nlohmann::json& j) { return j.is_number() ? j.get<double>() : NAN; }
 
 std::string cell(const nlohmann::json& v) { return v.is_string() ? v.get<std::string>() : v.dump(); }
 
@@ -48,17 +47,17 @@ Row group_row(const nlohmann::json& g, const std::map<std::string, const nlohman
     tmin = std::min(tmin, (*runs.at(id))["time_ms"]["min"].get<double>());
     tmax = std::max(tmax, (*runs.at(id))["time_ms"]["max"].get<double>());
   }
-  row.push_back(fixed(num(g["time_ms_median"])) + " [" + fixed(tmin, 3) + "-" + fixed(tmax, 3) + "]");
+  row.push_back(fixed(number(g["time_ms_median"])) + " [" + fixed(tmin, 3) + "-" + fixed(tmax, 3) + "]");
   for (const std::string& s : stages)
     row.push_back(fixed(group_mean(g, runs, [&](const nlohmann::json& r) {
-      return r["stages"].contains(s) ? num(r["stages"][s]["median"]) : NAN;
+      return r["stages"].contains(s) ? number(r["stages"][s]["median"]) : NAN;
     })));
-  std::string rmse = fixed(num(g["rmse_mean"]));
-  if (g["rmse_std"].is_number()) rmse += " ± " + fixed(num(g["rmse_std"]), 2);
+  std::string rmse = fixed(number(g["rmse_mean"]));
+  if (g["rmse_std"].is_number()) rmse += " ± " + fixed(number(g["rmse_std"]), 2);
   row.push_back(rmse);
-  row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return num(r["metrics"]["rel_mse"]); })));
-  row.push_back(fixed(num(g["ssim_mean"])));
-  row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return num(r["ssim_gain_pct_per_ms"]); }), 3));
+  row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["metrics"]["rel_mse"]); })));
+  row.push_back(fixed(number(g["ssim_mean"])));
+  row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["ssim_gain_pct_per_ms"]); }), 3));
   row.push_back(g.value("pareto", false) ? "yes" : "");
   return row;
 }

@@ -9,6 +9,7 @@
 #include "core/scene/scene_summary.h"
 #include "core/util/machine_info.h"
 #include "core/util/params.h"
+#include "core/util/statistics.h"
 
 namespace sst {
 
@@ -18,12 +19,15 @@ nlohmann::json stage_statistics(const std::vector<StageTimer>& timers) {
   for (const auto& [stage, ms0] : timers.front().stages()) {
     std::vector<double> v;
     for (const StageTimer& t : timers) v.push_back(t.ms(stage));
-    std::sort(v.begin(), v.end());
-    size_t n = v.size();
-    double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-    j[stage] = {{"median", median}, {"min", v.front()}, {"max", v.back()}};
+    j[stage] = median_min_max(v);
   }
   return j;
+}
+
+nlohmann::json device_record(const RenderOptions& options) {
+  int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
+  return {{"backend", options.backend},
+          {"name", "CPU: Embree " RTC_VERSION_STRING ", oneTBB, " + std::to_string(threads) + " threads"}};
 }
 
 nlohmann::json make_render_record(const std::string& tool, const Scene& scene, const std::vector<RenderResult>& runs,
@@ -35,9 +39,7 @@ nlohmann::json make_render_record(const std::string& tool, const Scene& scene, c
   r["revision"] = tool_revision();
   r["timestamp"] = utc_timestamp();
   r["machine"] = machine_info();
-  int threads = last.options.threads > 0 ? last.options.threads : tbb::info::default_concurrency();
-  r["device"] = {{"backend", last.options.backend},
-                 {"name", "CPU: Embree " RTC_VERSION_STRING ", oneTBB, " + std::to_string(threads) + " threads"}};
+  r["device"] = device_record(last.options);
   r["scene"] = scene_summary(scene, last.options.diffuse_only);
   r["options"] = params_to_json(last.options);
   r["method_params"] = last.method_params;

@@ -16,6 +16,9 @@ inline constexpr int kRecordSchemaVersion = 1;
 // Medians with min and max over the runs, per stage: {"render": {"median":..,"min":..,"max":..}}.
 nlohmann::json stage_statistics(const std::vector<StageTimer>& timers);
 
+// The device a render ran on: {"backend", "name"}.
+nlohmann::json device_record(const RenderOptions& options);
+
 // `runs` are repeats of the same render (their images are identical; timings differ).
 nlohmann::json make_render_record(const std::string& tool, const Scene& scene, const std::vector<RenderResult>& runs,
                                   const StageTimer& load, const StageTimer& write);

@@ -18,6 +18,7 @@
 
 // The shared traversal, compiled as C++ over a FlatBvh (in namespace sst::glsl).
 #define BVH_CONTEXT_PARAM const sst::FlatBvh &bvh_buffers,
+#define BVH_CONTEXT_ARG bvh_buffers,
 #define BVH_NODE(i) bvh_buffers.nodes[i]
 #define BVH_TRIANGLE(i) bvh_buffers.triangles[i]
 #include "gpu/shared/bvh_traverse.h"

@@ -9,6 +9,7 @@
 //                      with its trailing comma, through which BVH_NODE/BVH_TRIANGLE reach the
 //                      buffers (C++: `const sst::FlatBvh& bvh,`); empty by default (GLSL
 //                      buffers are globals).
+//   BVH_CONTEXT_ARG    with BVH_CONTEXT_PARAM: the same parameter as an argument (`bvh,`).
 // The common subset used here: structs built member by member (no constructors, no aggregate
 // initialisation), functions returning structs, BVH_IN/BVH_INOUT for parameter qualifiers
 // (C++ const& / &, GLSL in / inout), BVH_FUNC before every function (C++ inline), vecN
@@ -49,6 +50,9 @@
 #endif
 #ifndef BVH_CONTEXT_PARAM
 #define BVH_CONTEXT_PARAM
+#endif
+#ifndef BVH_CONTEXT_ARG
+#define BVH_CONTEXT_ARG
 #endif
 
 #ifdef __cplusplus
@@ -199,8 +203,10 @@ BVH_FUNC bool bvh_intersect_triangle(BVH_IN(BvhRayPre) ray, BVH_IN(BvhTriangle) 
   return true;
 }
 
-// Closest hit with tmin <= t < tmax.
-BVH_FUNC BvhHit bvh_intersect(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, float tmin, float tmax) {
+// The one traversal behind both queries: the closest hit with tmin <= t < tmax, or, when
+// `any_hit`, the first hit found (its t need not be the closest). A stack overflow is reported as
+// triangle == BVH_STACK_OVERFLOW.
+BVH_FUNC BvhHit bvh_traverse(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, float tmin, float tmax, bool any_hit) {
   BvhRayPre ray = bvh_prepare_ray(origin, direction, tmin);
   BvhHit hit;
   hit.t = tmax;
@@ -215,7 +221,8 @@ BVH_FUNC BvhHit bvh_intersect(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, flo
     if (bvh_hit_box(ray, node.bounds_min, node.bounds_max, hit.t)) {
       if ((node.count_and_flags & BVH_LEAF_FLAG) != 0u) {
         uint end = node.first_or_right + (node.count_and_flags & BVH_COUNT_MASK);
-        for (uint i = node.first_or_right; i < end; ++i) bvh_intersect_triangle(ray, BVH_TRIANGLE(i), hit);
+        for (uint i = node.first_or_right; i < end; ++i)
+          if (bvh_intersect_triangle(ray, BVH_TRIANGLE(i), hit) && any_hit) return hit;
       } else {
         if (sp == BVH_STACK_SIZE) {
           hit.triangle = BVH_STACK_OVERFLOW;
@@ -236,38 +243,16 @@ BVH_FUNC BvhHit bvh_intersect(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, flo
   return hit;
 }
 
+// Closest hit with tmin <= t < tmax.
+BVH_FUNC BvhHit bvh_intersect(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, float tmin, float tmax) {
+  return bvh_traverse(BVH_CONTEXT_ARG origin, direction, tmin, tmax, false);
+}
+
 // Any hit with tmin <= t < tmax: BVH_OCCLUDED, BVH_VISIBLE or BVH_STACK_OVERFLOW.
 BVH_FUNC uint bvh_occluded(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, float tmin, float tmax) {
-  BvhRayPre ray = bvh_prepare_ray(origin, direction, tmin);
-  BvhHit hit;
-  hit.t = tmax;
-  hit.triangle = BVH_INVALID_TRIANGLE;
-  hit.u = 0.0f;
-  hit.v = 0.0f;
-  uint stack[BVH_STACK_SIZE];
-  int sp = 0;
-  uint index = 0u;
-  while (true) {
-    BvhNode node = BVH_NODE(index);
-    if (bvh_hit_box(ray, node.bounds_min, node.bounds_max, tmax)) {
-      if ((node.count_and_flags & BVH_LEAF_FLAG) != 0u) {
-        uint end = node.first_or_right + (node.count_and_flags & BVH_COUNT_MASK);
-        for (uint i = node.first_or_right; i < end; ++i)
-          if (bvh_intersect_triangle(ray, BVH_TRIANGLE(i), hit)) return BVH_OCCLUDED;
-      } else {
-        if (sp == BVH_STACK_SIZE) return BVH_STACK_OVERFLOW;
-        bool flip = ((ray.neg_mask >> (node.count_and_flags & BVH_AXIS_MASK)) & 1u) != 0u;
-        stack[sp] = flip ? index + 1u : node.first_or_right;
-        sp++;
-        index = flip ? node.first_or_right : index + 1u;
-        continue;
-      }
-    }
-    if (sp == 0) break;
-    sp--;
-    index = stack[sp];
-  }
-  return BVH_VISIBLE;
+  BvhHit hit = bvh_traverse(BVH_CONTEXT_ARG origin, direction, tmin, tmax, true);
+  if (hit.triangle == BVH_STACK_OVERFLOW) return BVH_STACK_OVERFLOW;
+  return hit.triangle == BVH_INVALID_TRIANGLE ? BVH_VISIBLE : BVH_OCCLUDED;
 }
 
 #ifdef __cplusplus

@@ -13,8 +13,10 @@
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "gpu/compute_pipeline.h"
+#include "gpu/gbuffer_pass.h"
 #include "gpu/gpu_buffer.h"
 #include "gpu/shader_library.h"
+#include "tests/gpu/gpu_test_util.h"
 #include "tests/test_util.h"
 
 namespace sst::gpu {
@@ -35,22 +37,18 @@ std::vector<glsl::BvhRay> random_rays(const Scene& scene, uint32_t count) {
 }
 
 void expect_gpu_equals_cpu(const Scene& scene, uint32_t count) {
-  std::string reason;
-  if (list_vulkan_devices(&reason).empty()) GTEST_SKIP() << reason;
-  if (embedded_spirv("bvh_trace_test").empty()) GTEST_SKIP() << "no shaders";
+  SKIP_WITHOUT_GPU("bvh_trace_test");
   FlatBvh bvh = build_flat_bvh(scene);
   std::vector<glsl::BvhRay> rays = random_rays(scene, count);
   VulkanContext context(0);
-  GpuBuffer nodes(context, bvh.nodes.size() * sizeof(glsl::BvhNode));
-  GpuBuffer triangles(context, bvh.triangles.size() * sizeof(glsl::BvhTriangle));
+  GpuBvh gpu_bvh(context, bvh);
   GpuBuffer ray_buffer(context, rays.size() * sizeof(glsl::BvhRay));
   GpuBuffer hits(context, rays.size() * sizeof(glsl::BvhHit));
   GpuBuffer occluded(context, rays.size() * sizeof(uint32_t));
-  nodes.upload(std::span<const glsl::BvhNode>(bvh.nodes));
-  triangles.upload(std::span<const glsl::BvhTriangle>(bvh.triangles));
   ray_buffer.upload(std::span<const glsl::BvhRay>(rays));
   ComputePipeline pipeline(context, "bvh_trace_test", 5, 4);
-  double gpu_ms = pipeline.dispatch({&nodes, &triangles, &ray_buffer, &hits, &occluded}, &count, (count + 63) / 64);
+  double gpu_ms = pipeline.dispatch({gpu_bvh.buffers()[0], gpu_bvh.buffers()[1], &ray_buffer, &hits, &occluded}, &count,
+                                    (count + 63) / 64);
   std::vector<glsl::BvhHit> gpu_hits(count);
   std::vector<uint32_t> gpu_occluded(count);
   hits.download(std::span<glsl::BvhHit>(gpu_hits));

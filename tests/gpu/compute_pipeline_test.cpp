@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 #ifdef SST_HAVE_VULKAN
 
-#include <cstring>
+#include <bit>
 #include <vector>
 
 #include "core/render/backend.h"
@@ -15,25 +15,15 @@
 #include "gpu/gpu_buffer.h"
 #include "gpu/shader_library.h"
 #include "gpu/vulkan_context.h"
+#include "tests/gpu/gpu_test_util.h"
 
 namespace sst::gpu {
 namespace {
 
-#define SKIP_WITHOUT_VULKAN()                                              \
-  do {                                                                     \
-    std::string reason;                                                    \
-    if (list_vulkan_devices(&reason).empty()) GTEST_SKIP() << reason;      \
-    if (embedded_spirv("rng_test").empty()) GTEST_SKIP() << "no shaders"; \
-  } while (0)
-
-uint32_t bits(float f) {
-  uint32_t b;
-  std::memcpy(&b, &f, 4);
-  return b;
-}
+uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
 
 TEST(ComputePipeline, GlslRngsDrawTheSameBitsAsTheCpp) {
-  SKIP_WITHOUT_VULKAN();
+  SKIP_WITHOUT_GPU("rng_test");
   VulkanContext context(0);
   const uint32_t count = 4096, seed = 12345;
   GpuBuffer out(context, count * 8 * sizeof(uint32_t));
@@ -54,7 +44,7 @@ TEST(ComputePipeline, GlslRngsDrawTheSameBitsAsTheCpp) {
 }
 
 TEST(ComputePipeline, BuffersBeyondTheDeviceLimitAreRefusedWithAMessage) {
-  SKIP_WITHOUT_VULKAN();
+  SKIP_WITHOUT_GPU("rng_test");
   VulkanContext context(0);
   size_t limit = context.info().max_storage_buffer_range;
   try {
@@ -69,7 +59,7 @@ TEST(ComputePipeline, BuffersBeyondTheDeviceLimitAreRefusedWithAMessage) {
 }
 
 TEST(ComputePipeline, WrongBindingsAndMissingShadersAreErrors) {
-  SKIP_WITHOUT_VULKAN();
+  SKIP_WITHOUT_GPU("rng_test");
   VulkanContext context(0);
   EXPECT_THROW(ComputePipeline(context, "no_such_shader", 1, 0), Error);
   ComputePipeline pipeline(context, "rng_test", 1, 8);

@@ -13,6 +13,7 @@
 #include "core/scene/gltf_loader.h"
 #include "gpu/gbuffer_pass.h"
 #include "gpu/shader_library.h"
+#include "tests/gpu/gpu_test_util.h"
 #include "tests/test_util.h"
 
 namespace sst::gpu {
@@ -32,9 +33,7 @@ double relative_rmse(const Image& gpu, const Image& cpu) {
 }
 
 void expect_gbuffer_equals_cpu(const Scene& scene, int width) {
-  std::string reason;
-  if (list_vulkan_devices(&reason).empty()) GTEST_SKIP() << reason;
-  if (embedded_spirv("gbuffer").empty()) GTEST_SKIP() << "no shaders";
+  SKIP_WITHOUT_GPU("gbuffer");
   RenderOptions options;
   options.method = "pt";
   options.width = width;

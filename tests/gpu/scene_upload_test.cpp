@@ -8,7 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstring>
+#include <bit>
 #include <memory>
 #include <vector>
 
@@ -26,28 +26,14 @@
 #include "gpu/scene_upload.h"
 #include "gpu/shader_library.h"
 #include "gpu/vulkan_context.h"
+#include "tests/gpu/gpu_test_util.h"
 #include "tests/test_util.h"
 
 namespace sst::gpu {
 namespace {
 
-#define SKIP_WITHOUT_VULKAN()                                                      \
-  do {                                                                             \
-    std::string reason;                                                            \
-    if (list_vulkan_devices(&reason).empty()) GTEST_SKIP() << reason;              \
-    if (embedded_spirv("surface_test").empty()) GTEST_SKIP() << "no shaders";      \
-  } while (0)
-
-uint32_t bits(float f) {
-  uint32_t b;
-  std::memcpy(&b, &f, 4);
-  return b;
-}
-float from_bits(uint32_t b) {
-  float f;
-  std::memcpy(&f, &b, 4);
-  return f;
-}
+uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
+float from_bits(uint32_t b) { return std::bit_cast<float>(b); }
 
 const Scene& cornell_box() {
   static const Scene scene = load_default_scene();
@@ -328,7 +314,7 @@ std::vector<Query> traced_queries(const Scene& scene, uint32_t wanted) {
 }
 
 TEST(GpuScene, UploadsEveryArrayAndReportsItsSize) {
-  SKIP_WITHOUT_VULKAN();
+  SKIP_WITHOUT_GPU("surface_test");
   VulkanContext context(0);
   const Scene& scene = staircase() ? *staircase() : cornell_box();
   PackedScene packed = pack_scene(scene);
@@ -364,7 +350,7 @@ void check_traced_hits(const Scene& scene) {
 
 // The Cornell box always, and the textured staircase when the shared scenes are present.
 TEST(GpuScene, SurfacesAtTracedHitsMatchTheCpu) {
-  SKIP_WITHOUT_VULKAN();
+  SKIP_WITHOUT_GPU("surface_test");
   check_traced_hits(cornell_box());
   if (staircase()) check_traced_hits(*staircase());
   else std::printf("shared scene staircase/staircase.gltf not present: Cornell box only\n");
@@ -375,7 +361,7 @@ TEST(GpuScene, SurfacesAtTracedHitsMatchTheCpu) {
 // one- and double-sided emitters; queries at random barycentrics (some outside the triangle, as
 // Embree's edges give) from both sides.
 TEST(GpuScene, EveryTextureModeMatchesTheCpu) {
-  SKIP_WITHOUT_VULKAN();
+  SKIP_WITHOUT_GPU("surface_test");
   Scene scene;
   scene.source = "generated:texture-modes";
   const Wrap wraps[3] = {Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat};

@@ -1,6 +1,6 @@
 #include "gpu/gbuffer_pass.h"
 
-#include "gpu/shared/frame_layout.h"
+#include "gpu/frame_params.h"
 
 namespace sst::gpu {
 
@@ -13,19 +13,8 @@ GpuBvh::GpuBvh(const VulkanContext& context, const FlatBvh& bvh)
 
 GBufferImages render_gbuffer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                              const PinholeCamera& camera, int width, int height, uint32_t seed, int spp) {
-  PinholeCamera::Basis b = camera.basis();
-  glsl::FrameParams frame{};
-  frame.eye = b.eye;
-  frame.tan_half_y = b.tan_half_y;
-  frame.right = b.right;
-  frame.aspect = b.aspect;
-  frame.up = b.up;
-  frame.width = uint32_t(width);
-  frame.forward = b.forward;
-  frame.height = uint32_t(height);
-  frame.seed = seed;
+  glsl::FrameParams frame = frame_params(camera, width, height, seed);
   frame.spp = uint32_t(spp);
-  frame.sample_offset = 0;
 
   const size_t pixels = size_t(width) * size_t(height);
   GpuBuffer out(context, pixels * sizeof(glsl::GBufferTexel));

@@ -1,11 +1,13 @@
 #include "core/accel/embree_accel.h"
 
+#include "core/accel/flat_bvh.h"
+
 #include <string>
 
 #include "core/util/error.h"
 
 namespace sst {
-EmbreeAccel::EmbreeAccel(const Scene& scene) {
+EmbreeAccel::EmbreeAccel(const Scene& scene, bool flat) {
   device_ = rtcNewDevice("");
   if (!device_) throw Error("could not create an Embree device");
   scene_ = rtcNewScene(device_);
@@ -38,9 +40,13 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) {
   if (RTCError code = rtcGetDeviceError(device_); code != RTC_ERROR_NONE)
     throw Error("Embree could not build the acceleration structure (error " + std::to_string(int(code)) + ")");
 
-  // 1e-5 of the diagonal: far below any feature the scenes model, far above float noise.
+  epsilon_ = scene_ray_epsilon(scene);
+  if (flat) flat_ = std::make_unique<FlatBvh>(build_flat_bvh(scene));
+}
+
+float scene_ray_epsilon(const Scene& scene) {
   float diagonal = scene.bounds.diagonal();
-  epsilon_ = 1e-5f * (diagonal > 0.0f && std::isfinite(diagonal) ? diagonal : 1.0f);
+  return 1e-5f * (diagonal > 0.0f && std::isfinite(diagonal) ? diagonal : 1.0f);
 }
 
 EmbreeAccel::~EmbreeAccel() {
@@ -68,6 +74,7 @@ RTCRay to_rtc(const Ray& ray) {
 }  // namespace
 
 Hit EmbreeAccel::intersect(const Ray& ray) const {
+  if (flat_) return flat_bvh_intersect(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -84,6 +91,7 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
 }
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
+  if (flat_) return flat_bvh_occluded(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = to_rtc(ray);

@@ -1,10 +1,14 @@
-// Ray queries against the scene's triangles with Embree 3: closest hit and occlusion.
+// Ray queries against the scene's triangles with Embree 3: closest hit and occlusion. Or, with
+// `flat` (RenderOptions::accel = "flat"), with the flat BVH the Vulkan backend traverses
+// (core/accel/flat_bvh.h): the same traversal code, so the CPU and GPU images can be compared bit
+// for bit, without Embree's different barycentrics and edge decisions.
 // Offsets that keep secondary rays off their own surface are relative to the scene size
 // (`ray_epsilon()`), never absolute, so millimetre and kilometre scenes behave the same.
 #pragma once
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <memory>
 
 #include "core/math/math.h"
 #include "core/scene/scene.h"
@@ -25,12 +29,22 @@ struct Hit {
   bool valid() const { return triangle != UINT32_MAX; }
 };
 
+// The scene-relative part of every ray offset: 1e-5 of the scene diagonal (1e-5 for an empty or
+// degenerate scene), far below any feature the scenes model, far above float noise. The Vulkan
+// backend's offsets (gpu/shaders/ray_offset.glsl) use the same value.
+float scene_ray_epsilon(const Scene& scene);
+
+struct FlatBvh;
+
 class EmbreeAccel {
  public:
-  explicit EmbreeAccel(const Scene& scene);
+  explicit EmbreeAccel(const Scene& scene, bool flat = false);
   ~EmbreeAccel();
   EmbreeAccel(const EmbreeAccel&) = delete;
   EmbreeAccel& operator=(const EmbreeAccel&) = delete;
+
+  // The flat BVH the queries use, or null when they use Embree.
+  const FlatBvh* flat_bvh() const { return flat_.get(); }
 
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
@@ -61,6 +75,7 @@ class EmbreeAccel {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   float epsilon_ = 0.0f;
+  std::unique_ptr<FlatBvh> flat_;  // set: queries go to the flat BVH instead of Embree
 };
 
 }  // namespace sst

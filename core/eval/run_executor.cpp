@@ -111,7 +111,7 @@ nlohmann::json execute_run(const Scene& scene, const RunSpec& run, const RunRefe
       {"time_ms", median_min_max(frame_times)},
       {"stages", stage_statistics(timers)},
       {"counters", last.frame.counters.to_json(frame_ms(last))},
-      {"device", device_record(last.options)},
+      {"device", last.device},
       {"scene_summary", scene_summary(scene, last.options.diffuse_only)},
       {"metrics", to_json(metrics)},
       {"images",

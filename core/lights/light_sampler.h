@@ -79,6 +79,12 @@ class LightSampler {
   // Returns false (the path carries nothing) when the weight would be zero or not finite.
   bool sample_emission(float u_pick, vec2 u_pos, vec2 u_dir, EmissionSample& out) const;
 
+  // The tables, read-only, for packing them for the GPU (gpu/light_upload.h).
+  const DiscreteDistribution& distribution() const { return distribution_; }
+  const std::vector<uint32_t>& emissive_triangles() const { return emissive_triangles_; }
+  const std::vector<float>& emissive_triangle_areas() const { return triangle_area_; }
+  const std::vector<uint32_t>& light_of_triangle() const { return light_of_triangle_; }
+
  private:
   bool emit_triangle(size_t k, vec2 u_pos, vec2 u_dir, EmissionSample& out) const;
 

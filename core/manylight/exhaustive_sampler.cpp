@@ -1,5 +1,6 @@
 #include "core/manylight/exhaustive_sampler.h"
 
+#include "core/manylight/gpu_sampler_inputs.h"
 #include "core/vpl/vpl_shading.h"
 
 namespace sst {
@@ -16,6 +17,10 @@ IndirectEstimate ExhaustiveSampler::estimate(const ManyLightFrame& frame, const 
   IndirectEstimate e;
   for (const Vpl& vpl : frame.vpls) e.value += shade_vpl(frame, point, vpl, &e.shadow_rays);
   return e;
+}
+
+void ExhaustiveSampler::gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+  begin_gpu_inputs(frame, ML_METHOD_EXHAUSTIVE, out);
 }
 
 }  // namespace sst

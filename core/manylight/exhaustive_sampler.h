@@ -8,6 +8,7 @@ namespace sst {
 class ExhaustiveSampler final : public IndirectSampler {
  public:
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override;
+  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
 };
 
 // One VPL's contribution at `point`, including visibility (the shadow ray is traced only when

@@ -8,6 +8,7 @@
 
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/gpu_sampler_inputs.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -166,6 +167,17 @@ IndirectEstimate HybridSampler::estimate(const ManyLightFrame& frame, const Shad
     if (i < cut.size()) traverse(frame, point, cut[i], sampler, e);
   }
   return e;
+}
+
+void HybridSampler::gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+  begin_gpu_inputs(frame, ML_METHOD_HYBRID, out);
+  set_tree_inputs(tree_, out);
+  set_cut_inputs(cuts_, out);
+  out.mock_cut = mock_cut_;
+  out.params.hybrid_cut_size = uint32_t(params_.cut_size);
+  out.params.hybrid_n_min = params_.n_min;
+  out.params.hybrid_d_max_abs = d_max_abs_;
+  out.params.hybrid_mock_cut_size = uint32_t(mock_cut_.size());
 }
 
 }  // namespace sst

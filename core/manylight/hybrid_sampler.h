@@ -71,6 +71,7 @@ class HybridSampler final : public TreeSamplerBase {
   void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                             PixelSampler& sampler) const override;
+  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
 
   const BlockCuts& cuts() const { return cuts_; }
   std::span<const uint32_t> mock_cut() const { return mock_cut_; }

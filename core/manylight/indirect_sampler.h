@@ -8,9 +8,12 @@
 #include "core/material/brdf.h"
 #include "core/render/method.h"
 #include "core/rng/sobol_sampler.h"
+#include "core/util/error.h"
 #include "core/vpl/vpl.h"
 
 namespace sst {
+
+struct GpuSamplerInputs;  // core/manylight/gpu_sampler_inputs.h
 
 // A camera ray's first hit, ready to shade.
 struct ShadingPoint {
@@ -43,6 +46,13 @@ class IndirectSampler {
   // One indirect sample at `point`; thread-safe (called from many threads at once).
   virtual IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                                     PixelSampler& sampler) const = 0;
+  // The GPU twin of the state prepare() built (gpu_sampler_inputs.h): the method id and
+  // parameters, and views of the tree, cuts and mock cut, for the Vulkan backend to upload and
+  // gpu/shaders/indirect_sampler.glsl to run estimate() with. Call after prepare(frame).
+  // A sampler without a GPU twin keeps this default, which throws sst::Error.
+  virtual void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+    throw Error("this sampler has no Vulkan port; use --backend cpu");
+  }
 };
 
 }  // namespace sst

@@ -10,6 +10,7 @@
 
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/gpu_sampler_inputs.h"
 #include "core/manylight/slc_sampler.h"
 #include "core/rng/hash_rng.h"
 #include "core/util/error.h"
@@ -169,6 +170,15 @@ IndirectEstimate RtslcSampler::estimate(const ManyLightFrame& frame, const Shadi
     e.value += shade_vpl(frame, point, vpl, &e.shadow_rays) * (float(slots) / s.probability);
   }
   return e;
+}
+
+void RtslcSampler::gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+  begin_gpu_inputs(frame, ML_METHOD_RTSLC, out);
+  set_tree_inputs(tree_, out);
+  set_cut_inputs(cuts_, out);
+  out.params.rtslc_interleave = uint32_t(params_.interleave);
+  out.params.rtslc_weights = weights_ == RtslcWeights::slc ? ML_RTSLC_WEIGHTS_SLC : ML_RTSLC_WEIGHTS_RTSLC;
+  out.params.rtslc_frame_index = frame_index_;
 }
 
 }  // namespace sst

@@ -79,6 +79,7 @@ class RtslcSampler final : public TreeSamplerBase {
   void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                             PixelSampler& sampler) const override;
+  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
 
   const BlockCuts& cuts() const { return cuts_; }
 

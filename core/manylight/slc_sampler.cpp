@@ -4,6 +4,7 @@
 
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/gpu_sampler_inputs.h"
 
 namespace sst {
 namespace {
@@ -91,6 +92,11 @@ IndirectEstimate SlcSampler::estimate(const ManyLightFrame& frame, const Shading
   if (vpl == kNoNode || vpl >= frame.vpls.size()) return e;  // a padding leaf (never drawn: weight 0)
   e.value = divide_by_probability(shade_vpl(frame, point, frame.vpls[vpl], &e.shadow_rays), t.probability);
   return e;
+}
+
+void SlcSampler::gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+  begin_gpu_inputs(frame, ML_METHOD_SLC, out);
+  set_tree_inputs(tree_, out);
 }
 
 }  // namespace sst

@@ -57,6 +57,7 @@ class SlcSampler final : public TreeSamplerBase {
  public:
   explicit SlcSampler(LightTreeParams params) : TreeSamplerBase(std::move(params)) {}
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override;
+  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
 };
 
 }  // namespace sst

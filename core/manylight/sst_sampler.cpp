@@ -4,6 +4,7 @@
 
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/gpu_sampler_inputs.h"
 
 namespace sst {
 namespace {
@@ -134,6 +135,13 @@ IndirectEstimate SstSampler::estimate(const ManyLightFrame& frame, const Shading
   }
   e.value = divide_by_probability(shade_vpl(frame, lp, vpl, &e.shadow_rays), t.probability * p_lobe);
   return e;
+}
+
+void SstSampler::gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+  begin_gpu_inputs(frame, ML_METHOD_SST, out);
+  set_tree_inputs(tree_, out);
+  out.params.sst_eps = sst_.distance_floor * tree_.length_scale;  // the product estimate() forms
+  out.params.sst_substitutes = sst_.substitutes ? 1u : 0u;
 }
 
 }  // namespace sst

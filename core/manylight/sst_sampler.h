@@ -86,6 +86,7 @@ class SstSampler final : public TreeSamplerBase {
  public:
   SstSampler(LightTreeParams params, SstParams sst) : TreeSamplerBase(std::move(params)), sst_(sst) {}
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override;
+  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
 
  private:
   SstParams sst_;

@@ -1,6 +1,7 @@
 #include "core/manylight/uniform_sampler.h"
 
 #include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/gpu_sampler_inputs.h"
 
 namespace sst {
 
@@ -12,6 +13,10 @@ IndirectEstimate UniformSampler::estimate(const ManyLightFrame& frame, const Sha
   size_t j = std::min(n - 1, size_t(sampler.get1d() * float(n)));
   e.value = shade_vpl(frame, point, frame.vpls[j], &e.shadow_rays) * float(n);
   return e;
+}
+
+void UniformSampler::gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
+  begin_gpu_inputs(frame, ML_METHOD_UNIFORM, out);
 }
 
 }  // namespace sst

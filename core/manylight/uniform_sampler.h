@@ -8,6 +8,7 @@ namespace sst {
 class UniformSampler final : public IndirectSampler {
  public:
   IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override;
+  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
 };
 
 }  // namespace sst

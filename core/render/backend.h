@@ -31,9 +31,12 @@ const char* backend_names();
 
 // Resolves a requested backend to the one that runs:
 //   "cpu"    -> "cpu";
-//   "auto"   -> "cpu" for now (no method runs on Vulkan yet), with a note in *message;
-//   "vulkan" -> throws sst::Error: "no Vulkan device (<reason>)" or "device N does not exist" when
-//               the device is missing, otherwise "not implemented yet (issue 5)";
+//   "vulkan" -> "vulkan" when device `device` exists and the shaders are built in; otherwise throws
+//               sst::Error: "no Vulkan device (<reason>)", "device N does not exist", "built without
+//               shaders";
+//   "auto"   -> "vulkan" on device `device` when it exists and is a GPU, else "cpu", with a note in
+//               *message either way. A CPU implementation of Vulkan (lavapipe) counts as no GPU: on
+//               the same cores, Embree is faster, so auto does not pick it;
 //   anything else -> throws sst::Error naming the valid values.
 // *message (when given) is set to a one-line note for the user, or cleared when there is none.
 std::string resolve_backend(const std::string& requested, int device, std::string* message);

@@ -14,6 +14,10 @@
 #include "core/scene/scene.h"
 #include "core/util/stage_timer.h"
 
+namespace sst::gpu {
+class GpuRenderContext;  // gpu/gpu_render_context.h: the device and the scene on it
+}
+
 namespace sst {
 
 class Progress;
@@ -27,6 +31,8 @@ struct RenderContext {
   const RenderOptions& options;
   int width, height;
   bool quiet = false;
+  // The Vulkan device and the scene uploaded to it; null on the CPU backend.
+  const gpu::GpuRenderContext* gpu = nullptr;
 };
 
 class Method {
@@ -34,6 +40,9 @@ class Method {
   virtual ~Method() = default;
   // Renders the frame, timing its stages into `timer` (names: "render", or the method's stages).
   virtual FrameOutput render(const RenderContext& context, StageTimer& timer) = 0;
+  // The same frame on the Vulkan backend (context.gpu is set): the same parameters, random numbers
+  // and outputs. A method without a Vulkan port keeps this default, which throws sst::Error.
+  virtual FrameOutput render_vulkan(const RenderContext& context, StageTimer& timer);
   // Every parameter in effect, for the JSON record.
   virtual nlohmann::json params() const = 0;
 };

@@ -44,6 +44,9 @@ class PathTracer final : public Method {
  public:
   explicit PathTracer(const PathTracerParams& params);
   FrameOutput render(const RenderContext& context, StageTimer& timer) override;
+#ifdef SST_HAVE_VULKAN
+  FrameOutput render_vulkan(const RenderContext& context, StageTimer& timer) override;  // gpu/path_tracer_vulkan.cpp
+#endif
   nlohmann::json params() const override;
 
  private:

@@ -11,6 +11,9 @@ void validate(const RenderOptions& o) {
   if (o.width < 0 || o.height < 0) throw Error("width and height must be >= 0");
   if (int64_t(o.width) * o.height > (int64_t(1) << 28)) throw Error("image of " + std::to_string(o.width) + "x" + std::to_string(o.height) + " pixels is too large");
   if (o.spp < 1) throw Error("spp must be >= 1 (got " + std::to_string(o.spp) + ")");
+  if (o.device < 0) throw Error("device must be >= 0 (got " + std::to_string(o.device) + ")");
+  if (o.accel != "embree" && o.accel != "flat")
+    throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
   if (o.threads < 0) throw Error("threads must be >= 0");
   if (!std::isfinite(o.exposure)) throw Error("exposure must be finite");
   // Only the name is checked here; resolve_backend (core/render/backend.h) decides what runs.

@@ -9,6 +9,8 @@ namespace sst {
 struct RenderOptions {
   std::string method = "pt";
   std::string backend = "cpu";
+  int device = 0;  // Vulkan device index (sst-render --list-devices)
+  std::string accel = "embree";  // CPU ray queries: embree, or flat (the Vulkan backend's BVH)
   int width = 0;   // 0: from height and the camera's aspect ratio
   int height = 0;  // 0: from width and the camera's aspect ratio
   int spp = 16;
@@ -21,7 +23,9 @@ struct RenderOptions {
   template <class V>
   void visit(V&& v) {
     v("method", method, "rendering method (see --list-methods)");
-    v("backend", backend, "cpu (Embree), vulkan (device selection only, issue 5) or auto (vulkan when it can run the method, else cpu)");
+    v("backend", backend, "cpu (Embree), vulkan (compute shaders) or auto (vulkan when a device is present, else cpu)");
+    v("device", device, "Vulkan device index for backend vulkan/auto (see --list-devices)");
+    v("accel", accel, "CPU ray queries: embree, or flat (the BVH the Vulkan backend traverses, for exact cross-backend comparisons)");
     v("width", width, "image width in pixels (0: from height and the camera's aspect ratio)");
     v("height", height, "image height in pixels (0: from width and the camera's aspect ratio)");
     v("spp", spp, "samples per pixel (pt: camera paths; many-light methods: indirect samples)");

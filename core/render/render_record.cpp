@@ -24,10 +24,20 @@ nlohmann::json stage_statistics(const std::vector<StageTimer>& timers) {
   return j;
 }
 
-nlohmann::json device_record(const RenderOptions& options) {
+nlohmann::json cpu_device_record(const RenderOptions& options) {
   int threads = options.threads > 0 ? options.threads : tbb::info::default_concurrency();
-  return {{"backend", options.backend},
+  return {{"backend", "cpu"},
           {"name", "CPU: Embree " RTC_VERSION_STRING ", oneTBB, " + std::to_string(threads) + " threads"}};
+}
+
+nlohmann::json vulkan_device_record(const DeviceInfo& d, const nlohmann::json& setup) {
+  return {{"backend", "vulkan"},
+          {"index", d.index},
+          {"name", d.name},
+          {"type", d.type},
+          {"driver", d.driver},
+          {"api_version", api_version_string(d.api_version)},
+          {"setup", setup}};
 }
 
 nlohmann::json make_render_record(const std::string& tool, const Scene& scene, const std::vector<RenderResult>& runs,
@@ -39,7 +49,7 @@ nlohmann::json make_render_record(const std::string& tool, const Scene& scene, c
   r["revision"] = tool_revision();
   r["timestamp"] = utc_timestamp();
   r["machine"] = machine_info();
-  r["device"] = device_record(last.options);
+  r["device"] = last.device;
   r["scene"] = scene_summary(scene, last.options.diffuse_only);
   r["options"] = params_to_json(last.options);
   r["method_params"] = last.method_params;

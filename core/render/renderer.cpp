@@ -10,6 +10,11 @@
 #include "core/render/backend.h"
 #include "core/render/camera.h"
 #include "core/render/method_registry.h"
+#include "core/render/render_record.h"
+
+#ifdef SST_HAVE_VULKAN
+#include "gpu/gpu_render_context.h"
+#endif
 
 namespace sst {
 
@@ -18,9 +23,9 @@ RenderResult render_frame(const Scene& scene, const RenderOptions& options, cons
   RenderResult result;
   result.options = options;
   validate(result.options);
-  // The backend that runs ("auto" becomes a concrete one; "vulkan" fails with one line until issue 5).
+  // The backend that runs ("auto" becomes a concrete one; "vulkan" without a device fails with one line).
   std::string backend_note;
-  result.options.backend = resolve_backend(options.backend, 0, &backend_note);
+  result.options.backend = resolve_backend(options.backend, options.device, &backend_note);
   if (!backend_note.empty() && !quiet) std::fprintf(stderr, "note: %s\n", backend_note.c_str());
   // Create the method first: a bad parameter fails before any expensive work.
   std::unique_ptr<Method> method = create_method(options.method, method_params);
@@ -33,10 +38,27 @@ RenderResult render_frame(const Scene& scene, const RenderOptions& options, cons
   const Camera& camera = select_camera(scene, options.camera);
   resolve_resolution(camera, result.options.width, result.options.height);
   validate(result.options);
-  auto accel = result.timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene); });
+  // A Vulkan render traces every ray through the flat BVH, also those the CPU traces for it (the
+  // guide pixels of rtslc's and the hybrid's cuts), so that nothing in it depends on Embree.
+  if (result.options.backend == "vulkan") result.options.accel = "flat";
+  auto accel = result.timer.time("accel_build",
+                                 [&] { return std::make_unique<EmbreeAccel>(scene, result.options.accel == "flat"); });
   auto lights = result.timer.time("light_setup", [&] { return std::make_unique<LightSampler>(scene); });
   PinholeCamera pinhole(camera, result.options.width, result.options.height);
   RenderContext context{scene, *accel, *lights, pinhole, result.options, result.options.width, result.options.height, quiet};
+  result.device = cpu_device_record(result.options);
+  if (result.options.backend == "vulkan") {
+#ifdef SST_HAVE_VULKAN
+    // The CPU structures above stay: VPL methods build their trees and cuts on the CPU.
+    auto gpu = result.timer.time("gpu_setup", [&] {
+      return std::make_unique<gpu::GpuRenderContext>(result.options.device, scene, *lights, *accel->flat_bvh());
+    });
+    result.device = vulkan_device_record(gpu->vulkan().info(), gpu->describe());
+    context.gpu = gpu.get();
+    result.frame = method->render_vulkan(context, result.timer);
+    return result;
+#endif
+  }
   result.frame = method->render(context, result.timer);
   return result;
 }

@@ -14,7 +14,8 @@ struct RenderResult {
   FrameOutput frame;
   RenderOptions options;           // as resolved (width and height filled in)
   nlohmann::json method_params;    // every parameter of the method in effect
-  StageTimer timer;                // "accel_build", "light_setup", then the method's stages
+  StageTimer timer;                // "accel_build", "light_setup", ["gpu_setup",] then the method's stages
+  nlohmann::json device;           // where it ran (device_record in render_record.h)
 };
 
 RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,

@@ -21,6 +21,9 @@ class DiscreteDistribution {
   uint32_t sample(float u, float* u_remapped = nullptr) const;
   float pmf(uint32_t i) const { return i < pmf_.size() ? pmf_[i] : 0.0f; }
   double total() const { return total_; }
+  // The tables themselves, for packing them for the GPU (gpu/light_upload.h).
+  const std::vector<double>& cdf() const { return cdf_; }
+  const std::vector<float>& pmfs() const { return pmf_; }
 
  private:
   std::vector<double> cdf_;  // cdf_[i] = sum of pmf over [0, i]; cdf_.back() == 1

@@ -23,6 +23,7 @@
 // correctly rounded (a few ulps in normalised normals, never in positions, uvs or texels).
 #ifndef SST_GPU_SHADERS_SURFACE_GLSL
 #define SST_GPU_SHADERS_SURFACE_GLSL
+#include "gpu/shaders/math.glsl"
 
 // sst::Surface. `incoming` of make_surface is the direction of the ray that hit the surface.
 struct Surface {
@@ -40,20 +41,6 @@ struct Surface {
 };
 
 // ---- float helpers in glm's operation order --------------------------------------------------
-
-float scene_dot(vec3 a, vec3 b) {
-  precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
-  return r;
-}
-
-vec3 scene_cross(vec3 x, vec3 y) {
-  precise vec3 r = vec3(x.y * y.z - y.y * x.z, x.z * y.x - y.z * x.x, x.x * y.y - y.x * x.y);
-  return r;
-}
-
-float scene_length(vec3 v) { return sqrt(scene_dot(v, v)); }
-
-bool scene_isfinite(float x) { return !isinf(x) && !isnan(x); }
 
 // (1 - b.x - b.y) * a + b.x * b1 + b.y * c, as the C++ writes its interpolations.
 vec3 scene_interpolate3(vec3 a, vec3 b1v, vec3 c, vec2 b) {
@@ -120,7 +107,7 @@ vec4 scene_texture_sample(int index, vec2 uv) {
   SceneTexture t = scene_textures[index];
   int w = t.width, h = t.height;
   if (w <= 0 || h <= 0) return vec4(1.0);
-  if (!scene_isfinite(uv.x) || !scene_isfinite(uv.y)) return scene_texel(t, 0u);
+  if (!is_finite(uv.x) || !is_finite(uv.y)) return scene_texel(t, 0u);
   // Texel centres sit at half-integers.
   precise float x = scene_wrap_reduce(uv.x, t.wrap_s) * float(w) - 0.5;
   precise float y = scene_wrap_reduce(uv.y, t.wrap_t) * float(h) - 0.5;
@@ -158,8 +145,8 @@ vec3 triangle_geometric_normal(uint tri) {
   vec3 p0 = scene_vertices[t.v0].position;
   precise vec3 e1 = scene_vertices[t.v1].position - p0;
   precise vec3 e2 = scene_vertices[t.v2].position - p0;
-  vec3 n = scene_cross(e1, e2);
-  float len = scene_length(n);
+  vec3 n = glm_cross(e1, e2);
+  float len = glm_length(n);
   return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
 }
 
@@ -168,7 +155,7 @@ float triangle_area(uint tri) {
   vec3 p0 = scene_vertices[t.v0].position;
   precise vec3 e1 = scene_vertices[t.v1].position - p0;
   precise vec3 e2 = scene_vertices[t.v2].position - p0;
-  precise float a = 0.5 * scene_length(scene_cross(e1, e2));
+  precise float a = 0.5 * glm_length(glm_cross(e1, e2));
   return a;
 }
 
@@ -193,14 +180,14 @@ Surface make_surface(uint tri, vec2 b, vec3 incoming) {
   s.triangle = tri;
   s.material = t.material;
   s.ng = triangle_geometric_normal(tri);
-  s.front_face = scene_dot(s.ng, incoming) < 0.0;
+  s.front_face = glm_dot(s.ng, incoming) < 0.0;
   if (!s.front_face) s.ng = -s.ng;
   vec3 ns = scene_interpolate3(v0.normal, v1.normal, v2.normal, b);
-  float len = scene_length(ns);
-  ns = len > 0.0 && scene_isfinite(len) ? ns / len : s.ng;
+  float len = glm_length(ns);
+  ns = len > 0.0 && is_finite(len) ? ns / len : s.ng;
   // Shading normals are interpolated per vertex and may point away from the viewer's side;
   // keep them in the hemisphere of the geometric normal so shading never sees a back face.
-  if (scene_dot(ns, s.ng) < 0.0) ns = -ns;
+  if (glm_dot(ns, s.ng) < 0.0) ns = -ns;
   s.ns = ns;
   s.uv = scene_interpolate2(vec2(v0.u, v0.v), vec2(v1.u, v1.v), vec2(v2.u, v2.v), b);
 

@@ -203,6 +203,22 @@ BVH_FUNC bool bvh_intersect_triangle(BVH_IN(BvhRayPre) ray, BVH_IN(BvhTriangle) 
   return true;
 }
 
+// lavapipe (llvmpipe) ends every loop of a shader invocation once all its loops together have run
+// 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS), silently: the rest of the invocation then
+// computes garbage. The traversal loops are where the iterations go, so the GLSL counts them in
+// bvh_loop_iterations (per invocation), and the passes report samples that came near the limit
+// instead of returning a wrong image.
+#ifdef __cplusplus
+#define BVH_COUNT_ITERATION()
+#else
+uint bvh_loop_iterations = 0u;
+#define BVH_COUNT_ITERATION() ++bvh_loop_iterations
+#endif
+// The loop iterations of one SIMD group (subgroup) past which lavapipe's limit is near: a group's
+// loops go on while any of its lanes is active, so the group iterates at most the sum of its lanes'
+// counts; the margin below 65535 is for the shaders' other, short loops.
+#define BVH_LAVAPIPE_LOOP_BUDGET 64000u
+
 // The one traversal behind both queries: the closest hit with tmin <= t < tmax, or, when
 // `any_hit`, the first hit found (its t need not be the closest). A stack overflow is reported as
 // triangle == BVH_STACK_OVERFLOW.
@@ -217,12 +233,15 @@ BVH_FUNC BvhHit bvh_traverse(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, floa
   int sp = 0;
   uint index = 0u;
   while (true) {
+    BVH_COUNT_ITERATION();
     BvhNode node = BVH_NODE(index);
     if (bvh_hit_box(ray, node.bounds_min, node.bounds_max, hit.t)) {
       if ((node.count_and_flags & BVH_LEAF_FLAG) != 0u) {
         uint end = node.first_or_right + (node.count_and_flags & BVH_COUNT_MASK);
-        for (uint i = node.first_or_right; i < end; ++i)
+        for (uint i = node.first_or_right; i < end; ++i) {
+          BVH_COUNT_ITERATION();
           if (bvh_intersect_triangle(ray, BVH_TRIANGLE(i), hit) && any_hit) return hit;
+        }
       } else {
         if (sp == BVH_STACK_SIZE) {
           hit.triangle = BVH_STACK_OVERFLOW;

@@ -1,7 +1,7 @@
 // Per-frame data crossing the host/GPU boundary, defined once for C++ (namespace sst::glsl,
 // static_asserts) and GLSL: the camera and frame parameters (push constants, filled from
 // core/render/camera.h's PinholeCamera basis so that both backends generate the same rays) and
-// the G-buffer texel the first-hit pass writes.
+// the per-pixel outputs of the first-hit (G-buffer) and many-light sampling passes.
 #ifndef SST_GPU_SHARED_FRAME_LAYOUT_H
 #define SST_GPU_SHARED_FRAME_LAYOUT_H
 
@@ -41,7 +41,31 @@ struct GBufferTexel {
   float pad1;
 };
 
+// One pixel of the many-light sampling pass (gpu/shaders/many_light.comp): the sums the CPU's
+// ManyLightMethod keeps per pixel, accumulated over the samples of every dispatch (the first
+// dispatch of a frame overwrites), and per-pixel counts whose totals are the frame's counters.
+struct ManyLightTexel {
+  vec3 direct;            // sum of the direct light (emission seen + next-event estimation)
+  float depth;            // sum of the first-hit distances
+  vec3 indirect;          // sum of the indirect estimates
+  uint samples;           // camera samples taken
+  vec3 indirect2;         // sum of their squares (for the variance of the pixel mean)
+  uint indirect_samples;  // samples that hit a surface and drew an indirect estimate
+  vec3 albedo;            // sum of the first-hit base colours
+  uint nodes;             // tree nodes visited by the indirect estimates, summed
+  vec3 normal;            // sum of the first-hit shading normals
+  uint shadow_rays;       // of the direct light and of the indirect estimates
+  uint primary_rays;
+  uint bounce_rays;       // the direct light's BSDF-sampled ray (for MIS with emitters it hits)
+  uint nonfinite;         // samples dropped for a NaN or Inf
+  uint loop_budget_hits;  // samples after which the invocation was past BVH_LAVAPIPE_LOOP_BUDGET
+};
+
 #ifdef __cplusplus
+static_assert(sizeof(ManyLightTexel) == 96);
+static_assert(offsetof(ManyLightTexel, indirect) == 16 && offsetof(ManyLightTexel, indirect2) == 32);
+static_assert(offsetof(ManyLightTexel, albedo) == 48 && offsetof(ManyLightTexel, normal) == 64);
+static_assert(offsetof(ManyLightTexel, primary_rays) == 80);
 static_assert(sizeof(GBufferTexel) == 48);
 static_assert(offsetof(GBufferTexel, normal) == 16 && offsetof(GBufferTexel, emission) == 32);
 static_assert(sizeof(FrameParams) == 80);

@@ -9,6 +9,7 @@
 
 #ifdef SST_HAVE_VULKAN
 #include "gpu/vulkan_context.h"
+#include "gpu/shader_library.h"
 #endif
 
 namespace sst {
@@ -85,20 +86,31 @@ TEST(Backend, CpuResolvesToCpuWithoutNote) {
   EXPECT_EQ(resolve_backend("cpu", 0, nullptr), "cpu");
 }
 
-TEST(Backend, AutoFallsBackToCpuWithNote) {
-  std::string message;
-  EXPECT_EQ(resolve_backend("auto", 0, &message), "cpu");
-  EXPECT_EQ(message, "vulkan backend has no methods yet (issue 5); using cpu");
+// auto runs on a GPU when there is one; lavapipe (a CPU device) or no device at all means the CPU
+// backend, with a note saying why.
+TEST(Backend, AutoPicksAGpuAndOtherwiseTheCpuWithANote) {
+  std::string message, reason;
+  std::string chosen = resolve_backend("auto", 0, &message);
+  std::vector<DeviceInfo> devices = list_vulkan_devices(&reason);
+  bool gpu = !devices.empty() && devices[0].type != "cpu";
+#ifdef SST_HAVE_VULKAN
+  gpu = gpu && !gpu::embedded_spirv("many_light").empty();
+#endif
+  EXPECT_EQ(chosen, gpu ? "vulkan" : "cpu");
+  EXPECT_NE(message.find("auto: "), std::string::npos) << message;
+  if (!devices.empty()) EXPECT_NE(message.find(devices[0].name), std::string::npos) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
-TEST(Backend, VulkanIsNotImplementedYetOrHasNoDevice) {
+TEST(Backend, VulkanResolvesWhenADeviceExistsElseNamesWhyNot) {
   std::string reason;
   bool has_device = !list_vulkan_devices(&reason).empty();
-  std::string message = error_of([] { resolve_backend("vulkan", 0, nullptr); });
-  if (has_device)
-    EXPECT_EQ(message, "backend 'vulkan': not implemented yet (issue 5); use --backend cpu");
-  else
+  if (has_device) {
+    EXPECT_EQ(resolve_backend("vulkan", 0, nullptr), "vulkan");
+  } else {
+    std::string message = error_of([] { resolve_backend("vulkan", 0, nullptr); });
     EXPECT_EQ(message, "backend 'vulkan': no Vulkan device (" + reason + ")");
+  }
 }
 
 TEST(Backend, VulkanWithMissingDeviceNamesIt) {

@@ -1,0 +1,27 @@
+// The push constants every rendering shader starts with (gpu/shared/frame_layout.h FrameParams),
+// from the CPU's camera, so that both backends generate the same rays.
+#pragma once
+#include <cstdint>
+
+#include "core/render/camera.h"
+#include "gpu/shared/frame_layout.h"
+
+namespace sst::gpu {
+
+// sample_offset 0 and spp 0: each dispatch sets its own range of sample indices.
+inline glsl::FrameParams frame_params(const PinholeCamera& camera, int width, int height, uint32_t seed) {
+  PinholeCamera::Basis b = camera.basis();
+  glsl::FrameParams p{};
+  p.eye = b.eye;
+  p.tan_half_y = b.tan_half_y;
+  p.right = b.right;
+  p.aspect = b.aspect;
+  p.up = b.up;
+  p.width = uint32_t(width);
+  p.forward = b.forward;
+  p.height = uint32_t(height);
+  p.seed = seed;
+  return p;
+}
+
+}  // namespace sst::gpu

@@ -1,0 +1,53 @@
+// ManyLightMethod on the Vulkan backend: the same stages as ManyLightMethod::render, with the VPLs
+// generated and the pixels sampled on the GPU. The light tree and the per-block cuts are built on
+// the CPU by the sampler's own prepare() and uploaded (the record says so under "built_on").
+#include <chrono>
+
+#include "core/manylight/gpu_sampler_inputs.h"
+#include "core/manylight/many_light_method.h"
+#include "core/vpl/vpl_ply.h"
+#include "gpu/gpu_render_context.h"
+#include "gpu/many_light_pass.h"
+#include "gpu/many_light_upload.h"
+#include "gpu/vpl_generation_pass.h"
+
+namespace sst {
+
+FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer& timer) {
+  const gpu::GpuRenderContext& gpu = *ctx.gpu;
+  FrameOutput frame;
+  frame.allocate(ctx.width, ctx.height);
+
+  VplStats vpl_stats;
+  double vpl_gpu_ms = 0.0;
+  VplSet vpls = timer.time("vpl_generation", [&] {
+    return gpu::generate_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.scene, vpl_params_,
+                                  ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms);
+  });
+  if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
+  ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
+  frame.method_counters["vpl"] = to_json(vpl_stats);
+  sampler_->prepare(mlf, timer, frame.method_counters);
+
+  auto inputs = timer.time("gpu_upload", [&] {
+    GpuSamplerInputs in;
+    sampler_->gpu_inputs(mlf, in);
+    return std::make_unique<gpu::GpuManyLightInputs>(gpu.vulkan(), vpls, in);
+  });
+  gpu::ManyLightPassOutput out = timer.time("sampling", [&] {
+    return gpu::render_many_light(gpu, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
+                                  ctx.options.diffuse_only, frame);
+  });
+
+  frame.extra_layers = {{"indirect_variance", out.variance}, {"traversal_depth", out.traversal_depth}};
+  frame.method_counters["indirect_samples"] = out.indirect_samples;
+  frame.method_counters["nodes_visited_mean"] =
+      out.indirect_samples ? double(out.nodes_visited) / double(out.indirect_samples) : 0.0;
+  frame.method_counters["nodes_visited_histogram"] = out.depth_histogram;
+  frame.method_counters["gpu_ms"] = {{"vpl_generation", vpl_gpu_ms}, {"sampling", out.gpu_ms}};
+  frame.method_counters["gpu"] = {{"sampling_dispatches", out.dispatches}, {"pipeline_ms", out.pipeline_ms}};
+  frame.method_counters["built_on"] = {{"vpls", "gpu"}, {"tree", "cpu"}, {"cuts", "cpu"}, {"sampling", "gpu"}};
+  return frame;
+}
+
+}  // namespace sst

@@ -1,0 +1,39 @@
+// The `pt` method on the Vulkan backend (issue 5): the twin of PathTracer::render
+// (core/render/path_tracer.cpp). gpu/shaders/pt.comp traces every pixel's paths with the CPU's
+// random numbers through the flat BVH; this pass dispatches it in chunks of samples and turns the
+// per-pixel sums into the FrameOutput the CPU fills (color, direct, indirect, albedo, normal,
+// depth and the ray counters).
+#pragma once
+#include "core/render/camera.h"
+#include "core/render/frame.h"
+#include "core/render/path_tracer.h"
+#include "gpu/gbuffer_pass.h"
+#include "gpu/light_upload.h"
+#include "gpu/scene_upload.h"
+#include "gpu/vulkan_context.h"
+
+namespace sst::gpu {
+
+class GpuRenderContext;
+
+struct GpuPathTraceResult {
+  FrameOutput frame;
+  double gpu_ms = 0.0;  // all dispatches, from timestamps
+  int dispatches = 0;
+};
+
+// Renders `spp` camera paths per pixel (sample indices 0..spp-1 of PixelSampler(seed, pixel, i)),
+// as PathTracer::render does with the same seed, params and diffuse_only. `ray_epsilon` is
+// scene_ray_epsilon(scene) (core/accel/embree_accel.h). Samples are dispatched in chunks (the
+// first of one sample per pixel, the rest sized from its time; gpu/sample_chunks.h), so no single
+// dispatch runs long. Bindings of pt.comp: 0..4 scene, 5..6 BVH, 7..11 lights, 12 the texels.
+GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
+                                      const GpuLights& lights, float ray_epsilon, const PinholeCamera& camera,
+                                      int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
+                                      bool diffuse_only);
+
+// The same with everything uploaded once per render (gpu/gpu_render_context.h).
+GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, const PinholeCamera& camera, int width, int height,
+                                      uint32_t seed, int spp, const PathTracerParams& params, bool diffuse_only);
+
+}  // namespace sst::gpu

@@ -1,0 +1,122 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+// The sampling stage of every VPL method on the GPU: the twin of the pixel loop of
+// core/manylight/many_light_method.cpp. Per pixel and sample: the jittered camera ray, the direct
+// light exactly as `pt` with max_bounces = 0 computes it (path_trace.glsl), then one indirect
+// estimate from the frame's sampler at the first hit (indirect_sampler.glsl), summed into the
+// pixel's ManyLightTexel. A frame is rendered in dispatches of consecutive sample indices
+// [sample_offset, sample_offset + spp); the first overwrites the texels, the rest add to them.
+// Bindings: 0..4 scene, 5..6 BVH, 7..11 lights, 12..18 the sampler's inputs (MANY_LIGHT_BUFFERS),
+// 19 the texels, 20 the traversal-depth histogram (65 bins, the last one "64 or more").
+#include "gpu/shared/scene_layout.h"
+#include "gpu/shared/bvh_layout.h"
+#include "gpu/shared/light_layout.h"
+#include "gpu/shared/many_light_layout.h"
+#include "gpu/shared/frame_layout.h"
+SCENE_BUFFERS(0)
+layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
+layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+LIGHT_BUFFERS(7)
+MANY_LIGHT_BUFFERS(12)
+layout(std430, binding = 19) buffer Texels { ManyLightTexel texels[]; };
+layout(std430, binding = 20) buffer Histogram { uint depth_histogram[]; };
+layout(push_constant) uniform Push {
+  FrameParams frame;
+  float scene_epsilon;  // SCENE_RAY_EPSILON of gpu/shaders/ray_offset.glsl
+  uint diffuse_only;
+};
+#define BVH_NODE(i) bvh_nodes[i]
+#define BVH_TRIANGLE(i) bvh_triangles[i]
+#define SCENE_RAY_EPSILON scene_epsilon
+#include "gpu/shared/bvh_traverse.h"
+#include "gpu/shaders/surface.glsl"
+#include "gpu/shaders/sobol_sampler.glsl"
+#include "gpu/shaders/camera.glsl"
+#include "gpu/shaders/path_trace.glsl"
+#include "gpu/shaders/indirect_sampler.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// many_light_method.cpp's shading_point: the first hit seen along `dir`.
+ShadingPoint shading_point(Surface s, vec3 dir, uvec2 xy) {
+  ShadingPoint sp;
+  sp.p = s.p;
+  sp.ng = s.ng;
+  sp.frame = frame_from_normal(s.ns);
+  sp.wo = frame_to_local(sp.frame, -glm_normalize(dir));
+  sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only != 0u);
+  sp.x = int(xy.x);
+  sp.y = int(xy.y);
+  return sp;
+}
+
+ManyLightTexel empty_texel() {
+  ManyLightTexel t;
+  t.direct = vec3(0.0);
+  t.depth = 0.0;
+  t.indirect = vec3(0.0);
+  t.samples = 0u;
+  t.indirect2 = vec3(0.0);
+  t.indirect_samples = 0u;
+  t.albedo = vec3(0.0);
+  t.nodes = 0u;
+  t.normal = vec3(0.0);
+  t.shadow_rays = 0u;
+  t.primary_rays = 0u;
+  t.bounce_rays = 0u;
+  t.nonfinite = 0u;
+  t.loop_budget_hits = 0u;
+  return t;
+}
+
+void main() {
+  uvec2 xy = gl_GlobalInvocationID.xy;
+  if (xy.x >= frame.width || xy.y >= frame.height) return;
+  uint pixel = xy.y * frame.width + xy.x;
+  ManyLightTexel acc = empty_texel();
+  if (frame.sample_offset != 0u) acc = texels[pixel];
+  for (uint k = 0u; k < frame.spp; ++k) {
+    PixelSampler ps = pixel_sampler(frame.seed, pixel, frame.sample_offset + k);
+    vec2 jitter = pixel_sampler_get2d(ps);
+    precise float px = float(xy.x) + jitter.x, py = float(xy.y) + jitter.y;
+    vec3 dir = camera_direction(frame, px, py);
+    PathCounters counters = path_counters();
+    Surface hit;
+    bool has_hit;
+    PathSample d = trace_path(frame.eye, dir, 0, 0, diffuse_only != 0u, ps, counters, hit, has_hit);
+    acc.primary_rays += counters.primary_rays;
+    acc.shadow_rays += counters.shadow_rays;
+    acc.bounce_rays += counters.bounce_rays;
+    ++acc.samples;
+    vec3 value = vec3(0.0);
+    if (d.depth > 0.0) {
+      IndirectEstimate e = estimate_indirect(shading_point(hit, dir, xy), ps);
+      acc.shadow_rays += e.shadow_rays;
+      acc.nodes += e.nodes_visited;
+      ++acc.indirect_samples;
+      atomicAdd(depth_histogram[min(e.nodes_visited, 64u)], 1u);
+      value = e.value;
+    }
+    // The lanes of a subgroup share lavapipe's loop limit, and the subgroup's iterations are at
+    // most the sum of its lanes': over the budget by that bound, the sample may be cut short.
+    if (subgroupAdd(bvh_loop_iterations) > BVH_LAVAPIPE_LOOP_BUDGET) ++acc.loop_budget_hits;
+    if (!is_finite3(d.direct) || !is_finite3(value)) {
+      ++acc.nonfinite;
+      continue;
+    }
+    precise vec3 direct = acc.direct + d.direct;
+    precise vec3 indirect = acc.indirect + value;
+    precise vec3 indirect2 = acc.indirect2 + value * value;
+    precise vec3 albedo = acc.albedo + d.albedo;
+    precise vec3 normal = acc.normal + d.normal;
+    precise float depth = acc.depth + d.depth;
+    acc.direct = direct;
+    acc.indirect = indirect;
+    acc.indirect2 = indirect2;
+    acc.albedo = albedo;
+    acc.normal = normal;
+    acc.depth = depth;
+  }
+  texels[pixel] = acc;
+}

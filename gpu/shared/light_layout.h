@@ -1,0 +1,97 @@
+// The lights as they cross the host/GPU boundary (Vulkan backend), defined once for C++ and GLSL:
+// the twin of core/lights/light_sampler.h's tables (LightSampler and its DiscreteDistribution).
+// Packed by gpu/light_upload.h (pack_lights), read by gpu/shaders/light_sampler.glsl, which
+// samples exactly what LightSampler samples. In C++ the structures live in namespace sst::glsl
+// with static_asserts on size and offsets; in GLSL the same text declares plain std430 structs.
+//
+// Five std430 storage buffers, declared in GLSL by LIGHT_BUFFERS(first) under these names:
+//   LightHeader       light_header            counts and the scene bounds (one struct)
+//   LightPunctual     light_punctual[]        Scene::lights[i] at index i
+//   LightCdfEntry     light_distribution[]    entry i of the distribution over all lights:
+//                                             punctual lights first, then emissive triangles
+//   LightEmissive     light_emissive[]        emissive triangle k (distribution entry
+//                                             punctual_count + k)
+//   uint              light_of_triangle[]     scene triangle -> distribution entry, or
+//                                             LIGHT_NONE for a triangle that does not emit
+// An empty array is bound as a small dummy buffer; nothing indexes it.
+//
+// The distribution's CDF is double on the CPU. Each cdf value travels as a pair of floats
+// (hi = the nearest float, lo = the float nearest to the rest), so that the GPU decides
+// `cdf > u` for a float u exactly as the CPU does (hi > u, or hi == u and lo > 0): the same light
+// is picked for the same u, bit for bit.
+#ifndef SST_GPU_SHARED_LIGHT_LAYOUT_H
+#define SST_GPU_SHARED_LIGHT_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace sst::glsl {
+using uint = uint32_t;
+using glm::vec3;
+#endif
+
+// LightPunctual.type: sst::LightType.
+#define LIGHT_POINT 0u
+#define LIGHT_SPOT 1u
+#define LIGHT_DIRECTIONAL 2u
+// light_of_triangle[] of a triangle that is not a light (LightSampler's UINT32_MAX).
+#define LIGHT_NONE 0xFFFFFFFFu
+// The number of buffers LIGHT_BUFFERS declares (sst::gpu::GpuLights::buffers()).
+#define LIGHT_BUFFER_COUNT 5u
+
+struct LightHeader {
+  uint punctual_count;      // Scene::lights.size()
+  uint emissive_count;      // LightSampler::emissive_triangle_count()
+  uint distribution_size;   // punctual_count + emissive_count; 0 when the distribution is empty
+  uint triangle_count;      // entries of light_of_triangle[] (Scene::triangles.size())
+  vec3 bounds_center;       // Scene::bounds.center(), for directional emission
+  float bounds_radius;      // 0.5f * Scene::bounds.diagonal(), as the CPU computes it
+};
+
+// One KHR_lights_punctual light (sst::PunctualLight), radiometric.
+struct LightPunctual {
+  vec3 position;
+  uint type;         // LIGHT_POINT, LIGHT_SPOT, LIGHT_DIRECTIONAL
+  vec3 direction;    // unit, the direction the light travels
+  float cos_inner;
+  vec3 intensity;    // W/sr (point, spot) or W/m^2 (directional), per channel
+  float cos_outer;
+};
+
+// Entry i of DiscreteDistribution: its cdf as hi + lo (see the top) and its pmf.
+struct LightCdfEntry {
+  float cdf_hi;  // float(cdf[i])
+  float cdf_lo;  // float(cdf[i] - double(cdf_hi))
+  float pmf;     // DiscreteDistribution::pmf(i)
+  uint reserved; // 0
+};
+
+// Emissive triangle k of LightSampler: the scene triangle and its area (as the CPU computed it).
+struct LightEmissive {
+  uint triangle;
+  float area;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(LightHeader) == 32);
+static_assert(offsetof(LightHeader, bounds_center) == 16 && offsetof(LightHeader, bounds_radius) == 28);
+static_assert(sizeof(LightPunctual) == 48);
+static_assert(offsetof(LightPunctual, type) == 12 && offsetof(LightPunctual, direction) == 16);
+static_assert(offsetof(LightPunctual, cos_inner) == 28 && offsetof(LightPunctual, intensity) == 32);
+static_assert(offsetof(LightPunctual, cos_outer) == 44);
+static_assert(sizeof(LightCdfEntry) == 16 && offsetof(LightCdfEntry, pmf) == 8);
+static_assert(sizeof(LightEmissive) == 8 && offsetof(LightEmissive, area) == 4);
+}  // namespace sst::glsl
+#else
+// Declares the five light buffers, read-only, at bindings first .. first + 4 in the order of the
+// list at the top: the order of sst::gpu::GpuLights::buffers().
+#define LIGHT_BUFFERS(first)                                                                              \
+  layout(std430, binding = (first)) readonly buffer LightHeaderBuffer { LightHeader light_header; };     \
+  layout(std430, binding = (first) + 1) readonly buffer LightPunctuals { LightPunctual light_punctual[]; }; \
+  layout(std430, binding = (first) + 2) readonly buffer LightDistribution { LightCdfEntry light_distribution[]; }; \
+  layout(std430, binding = (first) + 3) readonly buffer LightEmissives { LightEmissive light_emissive[]; };  \
+  layout(std430, binding = (first) + 4) readonly buffer LightOfTriangle { uint light_of_triangle[]; };
+#endif
+
+#endif  // SST_GPU_SHARED_LIGHT_LAYOUT_H

@@ -1,0 +1,55 @@
+// The `pt` method's data crossing the host/GPU boundary (gpu/shaders/pt.comp and
+// gpu/path_trace_pass.h), defined once for C++ (namespace sst::glsl, static_asserts) and GLSL:
+// its push constants and the per-pixel sums it accumulates. The twin of the per-pixel state of
+// PathTracer::render (core/render/path_tracer.cpp).
+#ifndef SST_GPU_SHARED_PATH_TRACE_LAYOUT_H
+#define SST_GPU_SHARED_PATH_TRACE_LAYOUT_H
+
+#include "frame_layout.h"
+
+#ifdef __cplusplus
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+namespace sst::glsl {
+using uint = uint32_t;
+using glm::vec3;
+#endif
+
+// Push constants of pt.comp: the frame (camera, seed, this dispatch's sample range), the ray
+// offset of gpu/shaders/ray_offset.glsl (EmbreeAccel's scene_ray_epsilon) and PathTracerParams.
+struct PathTraceParams {
+  FrameParams frame;
+  float ray_epsilon;
+  int max_bounces;
+  int rr_min_bounces;
+  uint diffuse_only;  // 1: RenderOptions::diffuse_only
+};
+
+// One pixel's sums over the finite samples taken so far (the CPU's PathSample sum), and its
+// counts (the CPU's RayCounters, per pixel: the host adds them up for exact frame totals).
+struct PathTraceTexel {
+  vec3 direct;
+  float depth;
+  vec3 indirect;
+  uint samples;            // camera paths traced (finite or not)
+  vec3 albedo;
+  uint primary_rays;
+  vec3 normal;
+  uint shadow_rays;
+  uint bounce_rays;
+  uint nonfinite_samples;  // dropped for a NaN or Inf in direct or indirect
+  uint pad0;
+  uint pad1;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(PathTraceParams) == 96);
+static_assert(offsetof(PathTraceParams, ray_epsilon) == 80 && offsetof(PathTraceParams, diffuse_only) == 92);
+static_assert(sizeof(PathTraceTexel) == 80);
+static_assert(offsetof(PathTraceTexel, indirect) == 16 && offsetof(PathTraceTexel, albedo) == 32);
+static_assert(offsetof(PathTraceTexel, normal) == 48 && offsetof(PathTraceTexel, bounce_rays) == 64);
+}  // namespace sst::glsl
+#endif
+
+#endif  // SST_GPU_SHARED_PATH_TRACE_LAYOUT_H

@@ -1,7 +1,5 @@
 #include "gpu/many_light_pass.h"
 
-#include <chrono>
-
 #include "gpu/compute_pipeline.h"
 #include "gpu/frame_params.h"
 #include "gpu/sample_chunks.h"
@@ -42,9 +40,15 @@ void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutp
 
 }  // namespace
 
-ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, const GpuManyLightInputs& inputs,
-                                      const PinholeCamera& camera, uint32_t seed, int spp, bool diffuse_only,
-                                      FrameOutput& frame) {
+constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + glsl::kManyLightBufferCount + 2;
+
+std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu) {
+  return std::make_unique<ComputePipeline>(gpu.vulkan(), "many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)));
+}
+
+ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,
+                                      const GpuManyLightInputs& inputs, const PinholeCamera& camera, uint32_t seed,
+                                      int spp, bool diffuse_only, FrameOutput& frame) {
   const int width = frame.color.width, height = frame.color.height;
   const size_t pixels = size_t(width) * size_t(height);
   const VulkanContext& vk = gpu.vulkan();
@@ -59,21 +63,17 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, const GpuMany
   buffers.push_back(&histogram);
 
   ManyLightPassOutput out;
-  auto t0 = std::chrono::steady_clock::now();
-  ComputePipeline pipeline(vk, "many_light", uint32_t(buffers.size()), sizeof(ManyLightPush));
-  out.pipeline_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 
   ManyLightPush push{frame_params(camera, width, height, seed), gpu.ray_epsilon(), diffuse_only ? 1u : 0u};
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;
-  // lavapipe: one sample per dispatch, so that each sample has the whole loop budget (bvh_traverse.h).
   const bool lavapipe = vk.info().type == "cpu";
-  for (int done = 0; done < spp;) {
-    int chunk = done == 0 || lavapipe ? 1 : next_sample_chunk(out.gpu_ms / double(done), spp - done);
-    push.frame.sample_offset = uint32_t(done);
-    push.frame.spp = uint32_t(chunk);
-    out.gpu_ms += pipeline.dispatch(buffers, &push, groups_x, groups_y);
+  for (SampleChunks chunks(spp, lavapipe); !chunks.done();) {
+    push.frame.sample_offset = uint32_t(chunks.offset());
+    push.frame.spp = uint32_t(chunks.size());
+    double ms = pipeline.dispatch(buffers, &push, groups_x, groups_y);
+    out.gpu_ms += ms;
     ++out.dispatches;
-    done += chunk;
+    chunks.advance(ms);
   }
 
   std::vector<glsl::ManyLightTexel> sums(pixels);

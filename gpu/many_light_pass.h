@@ -4,11 +4,13 @@
 // with the same expressions.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/image/image.h"
 #include "core/render/camera.h"
 #include "core/render/frame.h"
+#include "gpu/compute_pipeline.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/many_light_upload.h"
 
@@ -21,14 +23,16 @@ struct ManyLightPassOutput {
   uint64_t indirect_samples = 0, nodes_visited = 0;
   uint64_t loop_budget_hits = 0;  // samples near lavapipe's loop limit (bvh_traverse.h); an error there
   double gpu_ms = 0.0;       // all dispatches, from timestamps
-  double pipeline_ms = 0.0;  // shader compilation by the driver
   int dispatches = 0;
 };
 
+// The sampling shader, compiled by the driver (a stage of its own: lavapipe takes ~0.3 s for it).
+std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu);
+
 // Renders `spp` samples per pixel into `frame` (color, direct, indirect, albedo, normal, depth
 // and counters), which must be allocated at width x height.
-ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, const GpuManyLightInputs& inputs,
-                                      const PinholeCamera& camera, uint32_t seed, int spp, bool diffuse_only,
-                                      FrameOutput& frame);
+ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,
+                                      const GpuManyLightInputs& inputs, const PinholeCamera& camera, uint32_t seed,
+                                      int spp, bool diffuse_only, FrameOutput& frame);
 
 }  // namespace sst::gpu

@@ -33,7 +33,7 @@ void write_pixel(const glsl::PathTraceTexel& t, float inv_spp, int x, int y, Fra
 GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                                       const GpuLights& lights, float ray_epsilon, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
-                                      bool diffuse_only) {
+                                      bool diffuse_only, ComputePipeline* pipeline) {
   if (width <= 0 || height <= 0) throw Error("pt on the GPU: image of " + std::to_string(width) + " x " +
                                              std::to_string(height) + " pixels");
   if (spp <= 0) throw Error("pt on the GPU: spp must be >= 1 (got " + std::to_string(spp) + ")");
@@ -51,21 +51,17 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   push.rr_min_bounces = params.rr_min_bounces;
   push.diffuse_only = diffuse_only ? 1u : 0u;
 
-  ComputePipeline pipeline(context, "pt", uint32_t(buffers.size()), sizeof push);
+  std::unique_ptr<ComputePipeline> own;
+  if (!pipeline) pipeline = (own = make_path_trace_pipeline(context)).get();
   GpuPathTraceResult out;
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;
-  double ms_per_sample = 0.0;
-  for (int done = 0; done < spp;) {
-    // One sample per pixel first, to measure; then chunks sized to a fraction of a second from
-    // the last dispatch (the first may include the driver's shader compilation).
-    int chunk = done == 0 ? 1 : next_sample_chunk(ms_per_sample, spp - done);
-    push.frame.sample_offset = uint32_t(done);
-    push.frame.spp = uint32_t(chunk);
-    double ms = pipeline.dispatch(buffers, &push, groups_x, groups_y);
+  for (SampleChunks chunks(spp, context.info().type == "cpu"); !chunks.done();) {
+    push.frame.sample_offset = uint32_t(chunks.offset());
+    push.frame.spp = uint32_t(chunks.size());
+    double ms = pipeline->dispatch(buffers, &push, groups_x, groups_y);
     out.gpu_ms += ms;
-    ms_per_sample = ms / double(chunk);
     ++out.dispatches;
-    done += chunk;
+    chunks.advance(ms);
   }
 
   std::vector<glsl::PathTraceTexel> sums(pixels);
@@ -77,10 +73,16 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   return out;
 }
 
-GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, const PinholeCamera& camera, int width, int height,
-                                      uint32_t seed, int spp, const PathTracerParams& params, bool diffuse_only) {
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context) {
+  return std::make_unique<ComputePipeline>(context, "pt", GpuRenderContext::kSceneBufferCount + 1,
+                                           uint32_t(sizeof(glsl::PathTraceParams)));
+}
+
+GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
+                                      int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
+                                      bool diffuse_only) {
   return render_path_tracer(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), gpu.ray_epsilon(), camera, width,
-                            height, seed, spp, params, diffuse_only);
+                            height, seed, spp, params, diffuse_only, &pipeline);
 }
 
 }  // namespace sst::gpu

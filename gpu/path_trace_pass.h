@@ -6,7 +6,10 @@
 #pragma once
 #include "core/render/camera.h"
 #include "core/render/frame.h"
+#include <memory>
+
 #include "core/render/path_tracer.h"
+#include "gpu/compute_pipeline.h"
 #include "gpu/gbuffer_pass.h"
 #include "gpu/light_upload.h"
 #include "gpu/scene_upload.h"
@@ -30,10 +33,14 @@ struct GpuPathTraceResult {
 GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                                       const GpuLights& lights, float ray_epsilon, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
-                                      bool diffuse_only);
+                                      bool diffuse_only, ComputePipeline* pipeline = nullptr);
 
-// The same with everything uploaded once per render (gpu/gpu_render_context.h).
-GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, const PinholeCamera& camera, int width, int height,
-                                      uint32_t seed, int spp, const PathTracerParams& params, bool diffuse_only);
+// pt.comp compiled by the driver, for the overload below (sst-render times it as its own stage).
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context);
+
+// The same with everything uploaded once per render (gpu/gpu_render_context.h) and the pipeline made.
+GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
+                                      int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
+                                      bool diffuse_only);
 
 }  // namespace sst::gpu

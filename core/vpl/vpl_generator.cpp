@@ -14,6 +14,16 @@
 namespace sst {
 namespace {
 
+// Two draws as one 2D sample, the first draw in y. This was `vec2(rng.next(), rng.next())`, whose
+// argument order C++ leaves to the compiler: GCC evaluated right to left. Spelled out so that every
+// compiler draws the VPL sets the results were made with; gpu/shaders/vpl_generation.comp draws
+// the same way (next_2d_as_cpu).
+vec2 next_2d(HashRng& rng) {
+  float y = rng.next();
+  float x = rng.next();
+  return {x, y};
+}
+
 // Paths are traced in fixed chunks of consecutive indices, each chunk into its own buffers, and
 // the chunks are concatenated in index order: the output never depends on which thread ran what.
 constexpr uint64_t kPathsPerChunk = 256;
@@ -45,8 +55,8 @@ struct Tracer {
   void trace(uint32_t path, Chunk& out) const {
     HashRng rng(seed, path, 0, kVplStream);
     float u_pick = rng.next();
-    vec2 u_pos(rng.next(), rng.next());
-    vec2 u_dir(rng.next(), rng.next());
+    vec2 u_pos = next_2d(rng);
+    vec2 u_dir = next_2d(rng);
     EmissionSample e;
     if (!lights.sample_emission(u_pick, u_pos, u_dir, e)) return;
     Ray ray;
@@ -67,7 +77,7 @@ struct Tracer {
       out.hit.push_back(uint16_t(hit_index));
       if (hit_index + 1 >= params.vpl_max_bounces) return;
 
-      vec2 u_bounce(rng.next(), rng.next());
+      vec2 u_bounce = next_2d(rng);
       float u_roulette = rng.next();
       if (hit_index + 1 >= params.vpl_min_bounces) {
         float survive = std::min(1.0f, max_component(albedo));

@@ -6,8 +6,12 @@
 
 #include <cstddef>
 #include <cstring>
+#include <memory>
 #include <span>
+#include <string>
+#include <vector>
 
+#include "core/util/error.h"
 #include "gpu/vulkan_context.h"
 
 namespace sst::gpu {
@@ -43,5 +47,25 @@ class GpuBuffer {
   void* mapped_ = nullptr;
   size_t bytes_ = 0;
 };
+
+// A new buffer holding `values` (an empty array gets GpuBuffer's 16-byte minimum). An allocation
+// that fails or exceeds the device's limit is an sst::Error that starts with `what` and the count.
+template <class T>
+std::unique_ptr<GpuBuffer> upload_buffer(const VulkanContext& context, std::span<const T> values,
+                                         const std::string& what) {
+  std::unique_ptr<GpuBuffer> buffer;
+  try {
+    buffer = std::make_unique<GpuBuffer>(context, values.size_bytes());
+  } catch (const std::exception& e) {
+    throw Error(what + " (" + std::to_string(values.size()) + "): " + e.what());
+  }
+  if (!values.empty()) buffer->upload(values);
+  return buffer;
+}
+template <class T>
+std::unique_ptr<GpuBuffer> upload_buffer(const VulkanContext& context, const std::vector<T>& values,
+                                         const std::string& what) {
+  return upload_buffer(context, std::span<const T>(values), what);
+}
 
 }  // namespace sst::gpu

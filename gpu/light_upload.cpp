@@ -84,32 +84,17 @@ PackedLights pack_lights(const Scene& scene, const LightSampler& lights) {
 }
 
 #ifdef SST_HAVE_VULKAN
-namespace {
-
-template <class T>
-std::unique_ptr<GpuBuffer> upload(const VulkanContext& context, const std::vector<T>& values, const char* what) {
-  std::unique_ptr<GpuBuffer> buffer;
-  try {
-    buffer = std::make_unique<GpuBuffer>(context, values.size() * sizeof(T));
-  } catch (const Error& e) {
-    throw Error(std::string("lights: ") + what + " (" + std::to_string(values.size()) + "): " + e.what());
-  }
-  buffer->upload(std::span<const T>(values));
-  return buffer;
-}
-
-}  // namespace
 
 GpuLights::GpuLights(const VulkanContext& context, const Scene& scene, const LightSampler& lights)
     : GpuLights(context, pack_lights(scene, lights)) {}
 
 GpuLights::GpuLights(const VulkanContext& context, const PackedLights& packed)
     : header_(packed.header),
-      header_buffer_(upload(context, std::vector<glsl::LightHeader>{packed.header}, "header")),
-      punctual_(upload(context, packed.punctual, "punctual lights")),
-      distribution_(upload(context, packed.distribution, "distribution")),
-      emissive_(upload(context, packed.emissive, "emissive triangles")),
-      light_of_triangle_(upload(context, packed.light_of_triangle, "light of triangle")) {}
+      header_buffer_(upload_buffer(context, std::span<const glsl::LightHeader>(&packed.header, 1), "lights: header")),
+      punctual_(upload_buffer(context, packed.punctual, "lights: punctual lights")),
+      distribution_(upload_buffer(context, packed.distribution, "lights: distribution")),
+      emissive_(upload_buffer(context, packed.emissive, "lights: emissive triangles")),
+      light_of_triangle_(upload_buffer(context, packed.light_of_triangle, "lights: light of triangle")) {}
 
 std::vector<const GpuBuffer*> GpuLights::buffers() const {
   return {header_buffer_.get(), punctual_.get(), distribution_.get(), emissive_.get(), light_of_triangle_.get()};

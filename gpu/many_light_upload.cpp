@@ -13,30 +13,19 @@ std::vector<glsl::GpuVpl> pack_vpls(const VplSet& vpls) {
   return out;
 }
 
-namespace {
-
-// A buffer holding `values`, or a 16-byte dummy for an empty array.
-template <class T>
-std::unique_ptr<GpuBuffer> upload_array(const VulkanContext& context, std::span<const T> values) {
-  auto buffer = std::make_unique<GpuBuffer>(context, values.empty() ? 16 : values.size_bytes());
-  if (!values.empty()) buffer->upload(values);
-  return buffer;
-}
-
-}  // namespace
 
 GpuManyLightInputs::GpuManyLightInputs(const VulkanContext& context, const VplSet& vpls,
                                        const GpuSamplerInputs& inputs)
     : params_(inputs.params) {
   std::vector<glsl::GpuVpl> packed = pack_vpls(vpls);
   params_.vpl_count = uint32_t(packed.size());
-  params_buffer_ = upload_array(context, std::span<const glsl::SamplerParams>(&params_, 1));
-  vpls_ = upload_array(context, std::span<const glsl::GpuVpl>(packed));
-  nodes_ = upload_array(context, inputs.nodes);
-  cut_nodes_ = upload_array(context, inputs.cut_nodes);
-  cut_sizes_ = upload_array(context, inputs.cut_sizes);
-  guides_ = upload_array(context, std::span<const glsl::CutGuide>(inputs.guides));
-  mock_cut_ = upload_array(context, inputs.mock_cut);
+  params_buffer_ = upload_buffer(context, std::span<const glsl::SamplerParams>(&params_, 1), "sampler parameters");
+  vpls_ = upload_buffer(context, std::span<const glsl::GpuVpl>(packed), "sampler VPLs");
+  nodes_ = upload_buffer(context, inputs.nodes, "sampler tree nodes");
+  cut_nodes_ = upload_buffer(context, inputs.cut_nodes, "sampler cut nodes");
+  cut_sizes_ = upload_buffer(context, inputs.cut_sizes, "sampler cut sizes");
+  guides_ = upload_buffer(context, std::span<const glsl::CutGuide>(inputs.guides), "sampler cut guides");
+  mock_cut_ = upload_buffer(context, inputs.mock_cut, "sampler mock cut");
 }
 
 std::vector<const GpuBuffer*> GpuManyLightInputs::buffers() const {

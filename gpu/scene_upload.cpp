@@ -149,30 +149,15 @@ std::string describe(const PackedScene& packed) {
 }
 
 #ifdef SST_HAVE_VULKAN
-namespace {
-
-template <class T>
-std::unique_ptr<GpuBuffer> upload(const VulkanContext& context, const std::vector<T>& values, const char* what) {
-  std::unique_ptr<GpuBuffer> buffer;
-  try {
-    buffer = std::make_unique<GpuBuffer>(context, values.size() * sizeof(T));
-  } catch (const Error& e) {
-    throw Error(std::string("scene ") + what + " (" + std::to_string(values.size()) + "): " + e.what());
-  }
-  buffer->upload(std::span<const T>(values));
-  return buffer;
-}
-
-}  // namespace
 
 GpuScene::GpuScene(const VulkanContext& context, const Scene& scene) : GpuScene(context, pack_scene(scene)) {}
 
 GpuScene::GpuScene(const VulkanContext& context, const PackedScene& packed)
-    : vertices_(upload(context, packed.vertices, "vertices")),
-      triangles_(upload(context, packed.triangles, "triangles")),
-      materials_(upload(context, packed.materials, "materials")),
-      textures_(upload(context, packed.textures, "textures")),
-      texels_(upload(context, packed.texels, "texels")),
+    : vertices_(upload_buffer(context, packed.vertices, "scene vertices")),
+      triangles_(upload_buffer(context, packed.triangles, "scene triangles")),
+      materials_(upload_buffer(context, packed.materials, "scene materials")),
+      textures_(upload_buffer(context, packed.textures, "scene textures")),
+      texels_(upload_buffer(context, packed.texels, "scene texels")),
       vertex_count_(packed.vertices.size()),
       triangle_count_(packed.triangles.size()),
       material_count_(packed.materials.size()),

@@ -25,6 +25,11 @@ struct ShadingPoint {
   int x = 0, y = 0;  // pixel
 };
 
+// The first hit `s` of a camera ray along `ray_direction` through pixel (x, y), ready to shade
+// (many_light_method.cpp; gpu/shaders/many_light.comp builds the same on the GPU).
+struct Surface;
+ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_only, int x, int y);
+
 // The frame-wide inputs of sampling.
 struct ManyLightFrame {
   const RenderContext& context;

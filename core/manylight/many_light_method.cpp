@@ -9,7 +9,6 @@
 #include "core/vpl/vpl_ply.h"
 
 namespace sst {
-namespace {
 
 ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_only, int x, int y) {
   ShadingPoint sp;
@@ -22,6 +21,8 @@ ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_on
   sp.y = y;
   return sp;
 }
+
+namespace {
 
 // Per-pixel sums of one frame, merged into the frame's counters at the end.
 struct Accumulators {

@@ -19,18 +19,7 @@
 namespace sst::gpu {
 namespace {
 
-double mean_abs(const Image& img) {
-  double s = 0.0;
-  for (float v : img.data) s += std::abs(v);
-  return s / double(img.data.size());
-}
-
-// RMSE of the GPU AOV against the CPU's, as a fraction of the CPU AOV's mean magnitude.
-double relative_rmse(const Image& gpu, const Image& cpu) {
-  double s = 0.0;
-  for (size_t i = 0; i < cpu.data.size(); ++i) s += double(gpu.data[i] - cpu.data[i]) * (gpu.data[i] - cpu.data[i]);
-  return std::sqrt(s / double(cpu.data.size())) / mean_abs(cpu);
-}
+using test::relative_rmse;
 
 void expect_gbuffer_equals_cpu(const Scene& scene, int width) {
   SKIP_WITHOUT_GPU("gbuffer");

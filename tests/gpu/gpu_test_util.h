@@ -4,8 +4,11 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <string_view>
+
+#include "core/image/image.h"
 
 #include "core/render/backend.h"
 #include "gpu/shader_library.h"
@@ -18,6 +21,25 @@ inline std::string gpu_unavailable(std::string_view shader) {
   if (list_vulkan_devices(&reason).empty()) return "no Vulkan device: " + reason;
   if (gpu::embedded_spirv(shader).empty()) return "shader " + std::string(shader) + " is not built in (no glslc)";
   return "";
+}
+
+// The mean of every channel of every pixel.
+inline double image_mean(const Image& img) {
+  double s = 0.0;
+  for (float v : img.data) s += v;
+  return img.data.empty() ? 0.0 : s / double(img.data.size());
+}
+
+// RMSE of the GPU image against the CPU's, as a fraction of the CPU image's mean magnitude
+// (absolute when the CPU image is black): issue 5's bar for "the same image" is 1e-3.
+inline double relative_rmse(const Image& gpu, const Image& cpu) {
+  double s = 0.0, m = 0.0;
+  for (size_t i = 0; i < cpu.data.size(); ++i) {
+    s += double(gpu.data[i] - cpu.data[i]) * (gpu.data[i] - cpu.data[i]);
+    m += std::abs(double(cpu.data[i]));
+  }
+  double n = double(cpu.data.size()), rmse = std::sqrt(s / n);
+  return m > 0.0 ? rmse / (m / n) : rmse;
 }
 
 }  // namespace sst::test

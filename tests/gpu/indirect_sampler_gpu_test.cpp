@@ -71,18 +71,6 @@ struct TestPush {
 constexpr int kWidth = 48, kHeight = 32;
 constexpr uint32_t kSeed = 7;
 
-// ManyLightMethod's shading point (many_light_method.cpp).
-ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_only, int x, int y) {
-  ShadingPoint sp;
-  sp.p = s.p;
-  sp.ng = s.ng;
-  sp.frame = Frame::from_normal(s.ns);
-  sp.wo = sp.frame.to_local(-glm::normalize(ray_direction));
-  sp.brdf = Brdf::from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
-  sp.x = x;
-  sp.y = y;
-  return sp;
-}
 
 // The Cornell box, diffuse-only or made glossy (rough dielectric walls, one metal: both lobes and
 // the pure-metal case of sst), its VPLs and the shading points of sample 0 of every pixel, each

@@ -36,20 +36,8 @@
 namespace sst::gpu {
 namespace {
 
-double mean(const Image& img) {
-  double s = 0.0;
-  for (float v : img.data) s += v;
-  return s / double(img.data.size());
-}
-
-// RMSE of the GPU image against the CPU's, as a fraction of the CPU image's mean (absolute when
-// the CPU image is black).
-double relative_rmse(const Image& gpu, const Image& cpu) {
-  double s = 0.0;
-  for (size_t i = 0; i < cpu.data.size(); ++i) s += double(gpu.data[i] - cpu.data[i]) * (gpu.data[i] - cpu.data[i]);
-  double rmse = std::sqrt(s / double(cpu.data.size())), m = mean(cpu);
-  return m > 0.0 ? rmse / m : rmse;
-}
+using test::relative_rmse;
+constexpr auto mean = test::image_mean;
 
 double relative_mean_difference(const Image& gpu, const Image& cpu) {
   double m = mean(cpu);

@@ -18,19 +18,7 @@
 namespace sst {
 namespace {
 
-double mean_of(const Image& img) {
-  double s = 0.0;
-  for (float v : img.data) s += v;
-  return s / double(img.data.size());
-}
-
-// RMSE between the two images as a fraction of the CPU image's mean.
-double relative_rmse(const Image& gpu, const Image& cpu) {
-  double s = 0.0;
-  for (size_t i = 0; i < cpu.data.size(); ++i) s += double(gpu.data[i] - cpu.data[i]) * (gpu.data[i] - cpu.data[i]);
-  double mean = mean_of(cpu);
-  return mean > 0.0 ? std::sqrt(s / double(cpu.data.size())) / mean : std::sqrt(s / double(cpu.data.size()));
-}
+using test::relative_rmse;
 
 const Image* layer(const FrameOutput& f, const std::string& name) {
   for (const Layer& l : f.extra_layers)

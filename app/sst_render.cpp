@@ -110,10 +110,11 @@ int run(const Args& args, const sst::app::ParamFlags& flags) {
   sst::write_json_atomic(json_path, record);
   if (!args.quiet) {
     const auto& c = last.frame.counters;
-    std::fprintf(stderr, "%s: %dx%d, %d spp, %s: render %.1f ms, %.2f Mrays/s -> %s\n", options.method.c_str(),
+    double ms = sst::frame_ms(last);
+    std::fprintf(stderr, "%s: %dx%d, %d spp, %s on %s: frame %.1f ms, %.2f Mrays/s -> %s\n", options.method.c_str(),
                  last.options.width, last.options.height, last.options.spp, scene.source.c_str(),
-                 last.timer.ms("render"), c.to_json(last.timer.ms("render"))["mrays_per_s"].get<double>(),
-                 outputs.front().c_str());
+                 last.device.value("name", std::string("?")).c_str(), ms,
+                 c.to_json(ms)["mrays_per_s"].get<double>(), outputs.front().c_str());
   }
   return 0;
 }

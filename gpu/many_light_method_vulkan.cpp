@@ -27,11 +27,9 @@ FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer&
   frame.method_counters["vpl"] = to_json(vpl_stats);
   sampler_->prepare(mlf, timer, frame.method_counters);
 
-  auto inputs = timer.time("gpu_upload", [&] {
-    GpuSamplerInputs in;
-    sampler_->gpu_inputs(mlf, in);
-    return std::make_unique<gpu::GpuManyLightInputs>(gpu.vulkan(), vpls, in);
-  });
+  GpuSamplerInputs in;
+  sampler_->gpu_inputs(mlf, in);
+  auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<gpu::GpuManyLightInputs>(gpu.vulkan(), vpls, in); });
   auto pipeline = timer.time("shader_compile", [&] { return gpu::make_many_light_pipeline(gpu); });
   gpu::ManyLightPassOutput out = timer.time("sampling", [&] {
     return gpu::render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
@@ -45,7 +43,10 @@ FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer&
   frame.method_counters["nodes_visited_histogram"] = out.depth_histogram;
   frame.method_counters["gpu_ms"] = {{"vpl_generation", vpl_gpu_ms}, {"sampling", out.gpu_ms}};
   frame.method_counters["gpu"] = {{"sampling_dispatches", out.dispatches}};
-  frame.method_counters["built_on"] = {{"vpls", "gpu"}, {"tree", "cpu"}, {"cuts", "cpu"}, {"sampling", "gpu"}};
+  nlohmann::json built_on = {{"vpls", "gpu"}, {"sampling", "gpu"}};
+  if (!in.nodes.empty()) built_on["tree"] = "cpu";
+  if (!in.cut_nodes.empty()) built_on["cuts"] = "cpu";
+  frame.method_counters["built_on"] = built_on;
   return frame;
 }
 

@@ -38,13 +38,6 @@ int refine_spp(int spp, double measured_ms, double budget_ms, nlohmann::json& ca
 
 }  // namespace
 
-double frame_ms(const RenderResult& result) {
-  double ms = 0.0;
-  for (const auto& [stage, t] : result.timer.stages())
-    if (stage != "accel_build" && stage != "light_setup") ms += t;
-  return ms;
-}
-
 int calibrate_spp(const Scene& scene, const RunSpec& run, double budget_ms, nlohmann::json* probes) {
   const int spp_a = 1, spp_b = 4;
   // The faster of two renders per probe: timing noise only ever adds time.

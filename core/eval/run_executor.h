@@ -12,10 +12,6 @@
 
 namespace sst {
 
-// The frame time of a render: every stage the method ran, without the per-scene setup
-// (acceleration structure, light table) that a real-time renderer does once.
-double frame_ms(const RenderResult& result);
-
 // spp that makes the frame time meet `budget_ms`, from a linear model t = fixed + per_spp * spp
 // fitted to two probe renders. `probes` receives what was measured.
 int calibrate_spp(const Scene& scene, const RunSpec& run, double budget_ms, nlohmann::json* probes);

@@ -23,7 +23,7 @@ struct RenderOptions {
   template <class V>
   void visit(V&& v) {
     v("method", method, "rendering method (see --list-methods)");
-    v("backend", backend, "cpu (Embree), vulkan (compute shaders) or auto (vulkan when a device is present, else cpu)");
+    v("backend", backend, "cpu (Embree), vulkan (compute shaders) or auto (vulkan on a GPU, else cpu)");
     v("device", device, "Vulkan device index for backend vulkan/auto (see --list-devices)");
     v("accel", accel, "CPU ray queries: embree, or flat (the BVH the Vulkan backend traverses, for exact cross-backend comparisons)");
     v("width", width, "image width in pixels (0: from height and the camera's aspect ratio)");

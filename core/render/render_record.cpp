@@ -64,7 +64,7 @@ nlohmann::json make_render_record(const std::string& tool, const Scene& scene, c
   r["repeat"] = runs.size();
   r["timings_ms"] = stage_statistics(timers);
   // Load and write happen once; their min = max = median.
-  r["counters"] = last.frame.counters.to_json(last.timer.ms("render"));
+  r["counters"] = last.frame.counters.to_json(frame_ms(last));
   r["method_counters"] = last.frame.method_counters;
   return r;
 }

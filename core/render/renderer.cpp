@@ -18,6 +18,13 @@
 
 namespace sst {
 
+double frame_ms(const RenderResult& result) {
+  double ms = 0.0;
+  for (const auto& [stage, t] : result.timer.stages())
+    if (stage != "accel_build" && stage != "light_setup" && stage != "gpu_setup" && stage != "shader_compile") ms += t;
+  return ms;
+}
+
 RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
                           bool quiet) {
   RenderResult result;

@@ -18,6 +18,10 @@ struct RenderResult {
   nlohmann::json device;           // where it ran (device_record in render_record.h)
 };
 
+// The time of the frame itself: every stage but the per-scene and per-program setup that an
+// application pays once (accel_build, light_setup, gpu_setup, shader_compile).
+double frame_ms(const RenderResult& result);
+
 RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
                           bool quiet = true);
 

@@ -1,0 +1,150 @@
+#include "gpu/light_tree_build_pass.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/lighttree/sort_key.h"
+#include "core/util/error.h"
+#include "gpu/gpu_buffer.h"
+#include "gpu/many_light_upload.h"
+#include "gpu/shared/light_tree_build_layout.h"
+
+namespace sst::gpu {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr uint32_t kGroup = LTB_GROUP_SIZE;
+constexpr uint32_t kRadix = LTB_RADIX;
+constexpr uint32_t kMaxGroupsX = 65535;  // the smallest maxComputeWorkGroupCount[0] Vulkan allows
+constexpr int kDigitBits = 8;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// light_tree.cpp's length_scale (D), with its error message.
+float length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const Bounds3* scene_bounds) {
+  if (params.sigma_max_relative_to == "vpl_bounds") return vpl_bounds.diagonal();
+  if (!scene_bounds || scene_bounds->empty())
+    throw Error("light tree: sigma_max_relative_to 'scene_bounds' needs the scene bounds, and none were given");
+  return scene_bounds->diagonal();
+}
+
+// Workgroups for `count` invocations, as (x, y) with x within Vulkan's guaranteed limit.
+std::pair<uint32_t, uint32_t> groups_for(uint32_t count) {
+  uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
+  uint32_t x = std::min(groups, kMaxGroupsX);
+  return {x, (groups + x - 1) / x};
+}
+
+double run(ComputePipeline& pipeline, const std::vector<const GpuBuffer*>& buffers, const glsl::LightTreeBuildPush& push,
+           uint32_t invocations) {
+  auto [x, y] = groups_for(invocations);
+  return pipeline.dispatch(buffers, &push, x, y);
+}
+
+std::unique_ptr<GpuBuffer> buffer(const VulkanContext& context, size_t bytes, const char* what) {
+  try {
+    return std::make_unique<GpuBuffer>(context, bytes);
+  } catch (const std::exception& e) {
+    throw Error(std::string("GPU light tree: ") + what + ": " + e.what());
+  }
+}
+
+}  // namespace
+
+GpuLightTreeBuilder::GpuLightTreeBuilder(const VulkanContext& context) : context_(context) {
+  const uint32_t push = sizeof(glsl::LightTreeBuildPush);
+  keys_ = std::make_unique<ComputePipeline>(context, "light_tree_keys", 3, push);
+  histogram_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_histogram", 2, push);
+  scan_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_scan", 2, push);
+  scatter_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_scatter", 6, push);
+  hierarchy_ = std::make_unique<ComputePipeline>(context, "light_tree_hierarchy", 4, push);
+  merge_ = std::make_unique<ComputePipeline>(context, "light_tree_merge", 5, push);
+}
+
+GpuLightTreeBuilder::~GpuLightTreeBuilder() = default;
+
+LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
+                                     LightTreeBuildStats* stats_out, double* gpu_ms) {
+  validate(params);
+  if (params.tree != "radix")
+    throw Error("GPU light tree: tree '" + params.tree + "' is built on the CPU only (the GPU builds 'radix')");
+  check_sort_key_capacity(vpls.size());
+  LightTreeBuildStats stats;
+  auto start = Clock::now();
+  Bounds3 bounds = compute_vpl_bounds(vpls);
+  stats.bounds_ms = ms_since(start);
+
+  const uint32_t n = uint32_t(vpls.size());
+  LightTree tree;
+  tree.kind = params.tree;
+  tree.vpl_count = n;
+  tree.vpl_bounds = bounds;
+  tree.length_scale = length_scale(params, bounds, scene_bounds);
+  tree.v_min = params.v_min;
+  tree.sigma_max_abs = params.sigma_max * tree.length_scale;
+  tree.root = n == 0 ? kNoNode : 0;
+  tree.first_leaf = n == 0 ? 0 : n - 1;
+  tree.leaf_count = n;
+  double gpu_total = 0.0;
+  if (n > 0) {
+    const uint32_t node_count = 2 * n - 1, tiles = (n + kGroup - 1) / kGroup;
+    MortonGrid grid = MortonGrid::over(bounds);
+    glsl::LightTreeBuildPush push{};
+    push.count = n;
+    push.tile_count = tiles;
+    push.first_leaf = n - 1;
+    push.grid_origin = grid.origin;
+    push.grid_scale = grid.scale;
+    push.v_min = tree.v_min;
+    push.sigma_max_abs = tree.sigma_max_abs;
+
+    auto gpu_vpls = upload_buffer(context_, pack_vpls(vpls), "GPU light tree: VPLs");
+    auto keys = buffer(context_, size_t(n) * 8, "sort keys");
+    auto ids = buffer(context_, size_t(n) * 4, "VPL ids");
+    auto keys_swap = buffer(context_, size_t(n) * 8, "sort keys");
+    auto ids_swap = buffer(context_, size_t(n) * 4, "VPL ids");
+    auto counts = buffer(context_, size_t(kRadix) * tiles * 4, "radix counts");
+    auto totals = buffer(context_, size_t(kRadix) * 4, "radix totals");
+    auto nodes = buffer(context_, size_t(node_count) * sizeof(LightNode), "nodes");
+    auto parents = buffer(context_, size_t(node_count) * 4, "parents");
+    auto visits = buffer(context_, size_t(std::max(n - 1, 1u)) * 4, "arrival counters");
+
+    stats.keys_ms = run(*keys_, {gpu_vpls.get(), keys.get(), ids.get()}, push, n);
+    // As the CPU: the id bits are ascending in input order and every pass is stable, so sorting
+    // bits [kIdBits, 64) gives the full keys' order.
+    for (int shift = kIdBits; shift < 64; shift += kDigitBits) {
+      push.shift = uint32_t(shift);
+      stats.sort_ms += run(*histogram_, {keys.get(), counts.get()}, push, tiles * kGroup);
+      stats.sort_ms += scan_->dispatch({counts.get(), totals.get()}, &push, kRadix);
+      stats.sort_ms += run(*scatter_, {keys.get(), ids.get(), counts.get(), totals.get(), keys_swap.get(), ids_swap.get()},
+                           push, tiles * kGroup);
+      std::swap(keys, keys_swap);
+      std::swap(ids, ids_swap);
+    }
+    static_cast<uint32_t*>(parents->data())[0] = kNoNode;  // the root's
+    push.count = n - 1;
+    if (n > 1) stats.hierarchy_ms = run(*hierarchy_, {keys.get(), nodes.get(), parents.get(), visits.get()}, push, n - 1);
+    push.count = n;
+    stats.merge_ms = run(*merge_, {gpu_vpls.get(), ids.get(), parents.get(), visits.get(), nodes.get()}, push, n);
+    tree.nodes.resize(node_count);
+    nodes->download(std::span<LightNode>(tree.nodes));
+    gpu_total = stats.keys_ms + stats.sort_ms + stats.hierarchy_ms + stats.merge_ms;
+  }
+  stats.total_ms = ms_since(start);
+  if (stats_out) *stats_out = stats;
+  if (gpu_ms) *gpu_ms = gpu_total;
+  return tree;
+}
+
+LightTree build_light_tree_gpu(const VulkanContext& context, const VplSet& vpls, const LightTreeParams& params,
+                               const Bounds3* scene_bounds, LightTreeBuildStats* stats, double* gpu_ms) {
+  return GpuLightTreeBuilder(context).build(vpls, params, scene_bounds, stats, gpu_ms);
+}
+
+}  // namespace sst::gpu

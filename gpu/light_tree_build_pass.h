@@ -1,0 +1,48 @@
+// The light tree built on the GPU (issue 5): the twin of LightTreeBuilder::build for tree "radix"
+// (core/lighttree/light_tree.cpp), producing the same LightTree bit for bit (nodes memcmp-equal,
+// the same header fields) where the device's float division and sqrt are correctly rounded, as
+// on lavapipe. The stages are the CPU's, one compute pass each:
+//   VPL bounds, D, thresholds   host (compute_vpl_bounds: also checks every VPL; cheap)
+//   sort keys                   light_tree_keys.comp (one invocation per VPL)
+//   radix sort                  5 passes of 8 bits over key bits [25, 64), as the CPU: each
+//                               light_tree_sort_histogram / _scan / _scatter (stable)
+//   Karras hierarchy            light_tree_hierarchy.comp (one invocation per internal node)
+//   merge                       light_tree_merge.comp (one per leaf; atomic arrival counters)
+// Keys are uvec2 in the shaders: no shaderInt64 needed.
+#pragma once
+#include <memory>
+
+#include "core/lighttree/light_tree.h"
+#include "core/vpl/vpl.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/vulkan_context.h"
+
+namespace sst::gpu {
+
+// The passes' pipelines, created once (shader compilation is the slow part on lavapipe); build()
+// may be called any number of times. Not thread-safe (the pipelines own one command buffer each).
+class GpuLightTreeBuilder {
+ public:
+  // sst::Error when a shader is not built in.
+  explicit GpuLightTreeBuilder(const VulkanContext& context);
+  ~GpuLightTreeBuilder();
+
+  // What build_light_tree_gpu does (see there).
+  LightTree build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,
+                  LightTreeBuildStats* stats = nullptr, double* gpu_ms = nullptr);
+
+ private:
+  const VulkanContext& context_;
+  std::unique_ptr<ComputePipeline> keys_, histogram_, scan_, scatter_, hierarchy_, merge_;
+};
+
+// build_light_tree(vpls, params, scene_bounds) on the GPU. Throws sst::Error as the CPU does (bad
+// parameters, too many VPLs, a bad VPL), and for a tree other than "radix" (not built on the GPU
+// yet). `stats`: bounds_ms is host wall time; keys_ms, sort_ms, hierarchy_ms and merge_ms are the
+// GPU times of those passes (timestamps); total_ms is the wall time of the whole call, uploads
+// and downloads included. `gpu_ms` (optional): the GPU time of all passes.
+LightTree build_light_tree_gpu(const VulkanContext& context, const VplSet& vpls, const LightTreeParams& params,
+                               const Bounds3* scene_bounds = nullptr, LightTreeBuildStats* stats = nullptr,
+                               double* gpu_ms = nullptr);
+
+}  // namespace sst::gpu

@@ -131,7 +131,9 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
     push.count = n - 1;
     if (n > 1) stats.hierarchy_ms = run(*hierarchy_, {keys.get(), nodes.get(), parents.get(), visits.get()}, push, n - 1);
     push.count = n;
-    stats.merge_ms = run(*merge_, {gpu_vpls.get(), ids.get(), parents.get(), visits.get(), nodes.get()}, push, n);
+    // The merge runs one invocation per workgroup (see light_tree_merge.comp for why).
+    auto [mx, my] = std::pair<uint32_t, uint32_t>{std::min(n, kMaxGroupsX), (n + kMaxGroupsX - 1) / kMaxGroupsX};
+    stats.merge_ms = merge_->dispatch({gpu_vpls.get(), ids.get(), parents.get(), visits.get(), nodes.get()}, &push, mx, my);
     tree.nodes.resize(node_count);
     nodes->download(std::span<LightNode>(tree.nodes));
     gpu_total = stats.keys_ms + stats.sort_ms + stats.hierarchy_ms + stats.merge_ms;

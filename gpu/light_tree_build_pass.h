@@ -7,7 +7,8 @@
 //   radix sort                  5 passes of 8 bits over key bits [25, 64), as the CPU: each
 //                               light_tree_sort_histogram / _scan / _scatter (stable)
 //   Karras hierarchy            light_tree_hierarchy.comp (one invocation per internal node)
-//   merge                       light_tree_merge.comp (one per leaf; atomic arrival counters)
+//   merge                       light_tree_merge.comp (one per leaf, one per workgroup: a lavapipe
+//                               bug, see there; atomic arrival counters)
 // Keys are uvec2 in the shaders: no shaderInt64 needed.
 #pragma once
 #include <memory>

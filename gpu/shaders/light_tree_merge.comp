@@ -8,13 +8,18 @@
 // not the arrival order's, so the tree does not depend on scheduling. A climb is at most 64
 // nodes long (the radix tree's height is bounded by the key's 64 bits).
 //
+// Dispatch: one workgroup per VPL (x, y with x <= 65535), ltb_group() is the sorted position.
 // Bindings: 0 GpuVpl vpls[], 1 uint ids[] (sorted), 2 uint parents[], 3 uint visits[] (zeroed by
 // the hierarchy pass), 4 LightNode nodes[]. Push: count (VPLs), first_leaf, v_min, sigma_max_abs.
 #include "gpu/shared/many_light_layout.h"
 #include "gpu/shared/light_tree_build_layout.h"
 #include "gpu/shaders/light_tree_substitute.glsl"
 
-layout(local_size_x = LTB_GROUP_SIZE) in;
+// One invocation per workgroup: lavapipe (llvmpipe, LLVM 15) runs a workgroup's invocations as
+// SIMD lanes and mis-executes the branch on atomicAdd's result when lanes diverge in the climb
+// (the second arrival skipped its merge, leaving nodes unwritten); alone in its group an
+// invocation has no lanes to diverge from. Costs ~3x the merge time on lavapipe.
+layout(local_size_x = 1) in;
 layout(std430, binding = 0) readonly buffer Vpls { GpuVpl vpls[]; };
 layout(std430, binding = 1) readonly buffer Ids { uint ids[]; };
 layout(std430, binding = 2) readonly buffer Parents { uint parents[]; };
@@ -22,7 +27,7 @@ layout(std430, binding = 3) coherent buffer Visits { uint visits[]; };
 layout(std430, binding = 4) coherent buffer Nodes { LightNode nodes[]; };
 
 void main() {
-  uint i = ltb_index();
+  uint i = ltb_group();
   if (i >= ltb.count) return;
   SubstituteThresholds thresholds = SubstituteThresholds(ltb.v_min, ltb.sigma_max_abs);
   uint vpl = ids[i];

@@ -1,10 +1,12 @@
 // ManyLightMethod on the Vulkan backend: the same stages as ManyLightMethod::render, with the VPLs
-// generated and the pixels sampled on the GPU. The light tree and the per-block cuts are built on
-// the CPU by the sampler's own prepare() and uploaded (the record says so under "built_on").
+// generated, radix light trees built, and the pixels sampled on the GPU. Perfect trees (rtslc,
+// hybrid) and the per-block cuts are built on the CPU by the sampler's own prepare() and uploaded
+// (the record says where each ran under "built_on").
 #include "core/manylight/gpu_sampler_inputs.h"
 #include "core/manylight/many_light_method.h"
 #include "core/vpl/vpl_ply.h"
 #include "gpu/gpu_render_context.h"
+#include "gpu/light_tree_build_pass.h"
 #include "gpu/many_light_pass.h"
 #include "gpu/many_light_upload.h"
 #include "gpu/vpl_generation_pass.h"
@@ -25,7 +27,19 @@ FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer&
   if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
   ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
+  // Radix trees (slc's and sst's) are built on the GPU; the others on the CPU. The builder's
+  // shaders are compiled in stage shader_compile, like the sampling shader.
+  std::unique_ptr<gpu::GpuLightTreeBuilder> tree_builder;
+  if (params_.value("tree", "") == "radix")
+    tree_builder = timer.time("shader_compile", [&] { return std::make_unique<gpu::GpuLightTreeBuilder>(gpu.vulkan()); });
+  sampler_->set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const Bounds3* scene_bounds,
+                                 LightTreeBuildStats* stats, std::string* built_on) {
+    if (p.tree != "radix" || !tree_builder) return build_light_tree(v, p, scene_bounds, stats);
+    *built_on = "gpu";
+    return tree_builder->build(v, p, scene_bounds, stats);
+  });
   sampler_->prepare(mlf, timer, frame.method_counters);
+  sampler_->set_tree_builder({});
 
   GpuSamplerInputs in;
   sampler_->gpu_inputs(mlf, in);
@@ -44,7 +58,7 @@ FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer&
   frame.method_counters["gpu_ms"] = {{"vpl_generation", vpl_gpu_ms}, {"sampling", out.gpu_ms}};
   frame.method_counters["gpu"] = {{"sampling_dispatches", out.dispatches}};
   nlohmann::json built_on = {{"vpls", "gpu"}, {"sampling", "gpu"}};
-  if (!in.nodes.empty()) built_on["tree"] = "cpu";
+  if (!in.nodes.empty()) built_on["tree"] = frame.method_counters["tree"].value("built_on", "cpu");
   if (!in.cut_nodes.empty()) built_on["cuts"] = "cpu";
   frame.method_counters["built_on"] = built_on;
   return frame;

@@ -3,7 +3,9 @@
 // shading point. ManyLightMethod (many_light_method.h) does everything around it: VPL
 // generation, camera rays, direct light, accumulation, AOVs, counters, timings.
 #pragma once
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "core/material/brdf.h"
 #include "core/render/method.h"
@@ -14,6 +16,15 @@
 namespace sst {
 
 struct GpuSamplerInputs;  // core/manylight/gpu_sampler_inputs.h
+struct LightTree;
+struct LightTreeParams;
+struct LightTreeBuildStats;
+
+// Builds a frame's light tree as build_light_tree does, possibly elsewhere (the Vulkan backend's
+// GPU builder); sets *built_on to where it ran ("cpu" or "gpu").
+using LightTreeBuildFn = std::function<LightTree(const VplSet& vpls, const LightTreeParams& params,
+                                                 const Bounds3* scene_bounds, LightTreeBuildStats* stats,
+                                                 std::string* built_on)>;
 
 // A camera ray's first hit, ready to shade.
 struct ShadingPoint {
@@ -54,6 +65,8 @@ class IndirectSampler {
   // The GPU twin of the state prepare() built (gpu_sampler_inputs.h): the method id and
   // parameters, and views of the tree, cuts and mock cut, for the Vulkan backend to upload and
   // gpu/shaders/indirect_sampler.glsl to run estimate() with. Call after prepare(frame).
+  // Replaces how prepare() builds the frame's tree (samplers without a tree ignore it).
+  virtual void set_tree_builder(LightTreeBuildFn builder) {}
   // A sampler without a GPU twin keeps this default, which throws sst::Error.
   virtual void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
     throw Error("this sampler has no Vulkan port; use --backend cpu");

@@ -7,8 +7,13 @@ TreeSamplerBase::TreeSamplerBase(LightTreeParams params) : tree_params_(std::mov
 void TreeSamplerBase::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
   LightTreeBuildStats stats;
   const Bounds3& scene_bounds = frame.context.scene.bounds;
-  tree_ = timer.time("tree_build", [&] { return build_light_tree(frame.vpls, tree_params_, &scene_bounds, &stats); });
+  std::string built_on = "cpu";
+  tree_ = timer.time("tree_build", [&] {
+    return builder_ ? builder_(frame.vpls, tree_params_, &scene_bounds, &stats, &built_on)
+                    : build_light_tree(frame.vpls, tree_params_, &scene_bounds, &stats);
+  });
   counters["tree"] = {{"kind", tree_.kind},
+                      {"built_on", built_on},
                       {"nodes", tree_.nodes.size()},
                       {"height", tree_height(tree_)},
                       {"suitable_internal", count_suitable_internal(tree_)},

@@ -11,11 +11,15 @@ class TreeSamplerBase : public IndirectSampler {
  public:
   explicit TreeSamplerBase(LightTreeParams tree_params);
   void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
+  void set_tree_builder(LightTreeBuildFn builder) override { builder_ = std::move(builder); }
   const LightTree& tree() const { return tree_; }
 
  protected:
   LightTreeParams tree_params_;
   LightTree tree_;
+
+ private:
+  LightTreeBuildFn builder_;  // empty: build_light_tree on the CPU
 };
 
 }  // namespace sst

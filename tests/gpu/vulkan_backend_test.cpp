@@ -160,10 +160,16 @@ TEST(VulkanBackend, RecordNamesTheDeviceAndWhereEachStageRan) {
   RenderResult r = render_frame(load_default_scene(), options, {{"vpls", 256}});
   EXPECT_FALSE(r.device["name"].get<std::string>().empty());
   EXPECT_EQ(r.device["setup"]["bvh"]["built_on"], "cpu");
-  EXPECT_EQ(r.frame.method_counters["built_on"]["tree"], "cpu");
+  EXPECT_EQ(r.frame.method_counters["built_on"]["tree"], "gpu");  // sst's radix tree
+  EXPECT_EQ(r.frame.method_counters["tree"]["built_on"], "gpu");
   EXPECT_EQ(r.frame.method_counters["built_on"]["sampling"], "gpu");
   EXPECT_GT(r.frame.method_counters["gpu_ms"]["sampling"].get<double>(), 0.0);
   EXPECT_GT(r.timer.ms("gpu_setup"), 0.0);
+  // rtslc's perfect tree and its cuts are built on the CPU.
+  options.method = "rtslc";
+  RenderResult rt = render_frame(load_default_scene(), options, {{"vpls", 256}});
+  EXPECT_EQ(rt.frame.method_counters["built_on"]["tree"], "cpu");
+  EXPECT_EQ(rt.frame.method_counters["built_on"]["cuts"], "cpu");
 }
 
 }  // namespace

@@ -62,12 +62,13 @@ class IndirectSampler {
   // One indirect sample at `point`; thread-safe (called from many threads at once).
   virtual IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                                     PixelSampler& sampler) const = 0;
+  // Replaces how prepare() builds the frame's tree (samplers without a tree ignore it); an empty
+  // function restores the CPU builder.
+  virtual void set_tree_builder(LightTreeBuildFn builder) {}
   // The GPU twin of the state prepare() built (gpu_sampler_inputs.h): the method id and
   // parameters, and views of the tree, cuts and mock cut, for the Vulkan backend to upload and
-  // gpu/shaders/indirect_sampler.glsl to run estimate() with. Call after prepare(frame).
-  // Replaces how prepare() builds the frame's tree (samplers without a tree ignore it).
-  virtual void set_tree_builder(LightTreeBuildFn builder) {}
-  // A sampler without a GPU twin keeps this default, which throws sst::Error.
+  // gpu/shaders/indirect_sampler.glsl to run estimate() with. Call after prepare(frame). A
+  // sampler without a GPU twin keeps this default, which throws sst::Error.
   virtual void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const {
     throw Error("this sampler has no Vulkan port; use --backend cpu");
   }

@@ -48,17 +48,22 @@ class GpuBuffer {
   size_t bytes_ = 0;
 };
 
-// A new buffer holding `values` (an empty array gets GpuBuffer's 16-byte minimum). An allocation
-// that fails or exceeds the device's limit is an sst::Error that starts with `what` and the count.
+// A new buffer of `count` elements of `element_bytes`; an allocation that fails or exceeds the
+// device's limit is an sst::Error that starts with `what` and the count.
+inline std::unique_ptr<GpuBuffer> make_buffer(const VulkanContext& context, size_t count, size_t element_bytes,
+                                              const std::string& what) {
+  try {
+    return std::make_unique<GpuBuffer>(context, count * element_bytes);
+  } catch (const std::exception& e) {
+    throw Error(what + " (" + std::to_string(count) + "): " + e.what());
+  }
+}
+
+// A new buffer holding `values` (an empty array gets GpuBuffer's 16-byte minimum).
 template <class T>
 std::unique_ptr<GpuBuffer> upload_buffer(const VulkanContext& context, std::span<const T> values,
                                          const std::string& what) {
-  std::unique_ptr<GpuBuffer> buffer;
-  try {
-    buffer = std::make_unique<GpuBuffer>(context, values.size_bytes());
-  } catch (const std::exception& e) {
-    throw Error(what + " (" + std::to_string(values.size()) + "): " + e.what());
-  }
+  std::unique_ptr<GpuBuffer> buffer = make_buffer(context, values.size(), sizeof(T), what);
   if (!values.empty()) buffer->upload(values);
   return buffer;
 }

@@ -52,7 +52,11 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
   const int width = frame.color.width, height = frame.color.height;
   const size_t pixels = size_t(width) * size_t(height);
   const VulkanContext& vk = gpu.vulkan();
-  GpuBuffer texels(vk, pixels * sizeof(glsl::ManyLightTexel));
+  std::unique_ptr<GpuBuffer> texel_buffer =
+      make_buffer(vk, pixels, sizeof(glsl::ManyLightTexel), "sampling: per-pixel sums of a " +
+                                                               std::to_string(width) + "x" + std::to_string(height) +
+                                                               " image, pixels");
+  GpuBuffer& texels = *texel_buffer;
   GpuBuffer histogram(vk, 65 * sizeof(uint32_t));
   std::vector<uint32_t> zeros(65, 0);
   histogram.upload(std::span<const uint32_t>(zeros));

@@ -38,7 +38,10 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
                                              std::to_string(height) + " pixels");
   if (spp <= 0) throw Error("pt on the GPU: spp must be >= 1 (got " + std::to_string(spp) + ")");
   const size_t pixels = size_t(width) * size_t(height);
-  GpuBuffer texels(context, pixels * sizeof(glsl::PathTraceTexel));
+  std::unique_ptr<GpuBuffer> texel_buffer = make_buffer(
+      context, pixels, sizeof(glsl::PathTraceTexel),
+      "pt: per-pixel sums of a " + std::to_string(width) + "x" + std::to_string(height) + " image, pixels");
+  GpuBuffer& texels = *texel_buffer;
   std::vector<const GpuBuffer*> buffers = scene.buffers();
   for (const GpuBuffer* b : bvh.buffers()) buffers.push_back(b);
   for (const GpuBuffer* b : lights.buffers()) buffers.push_back(b);

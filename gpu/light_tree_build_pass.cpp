@@ -1,6 +1,7 @@
 #include "gpu/light_tree_build_pass.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -9,9 +10,7 @@
 
 #include "core/lighttree/sort_key.h"
 #include "core/util/error.h"
-#include "gpu/gpu_buffer.h"
 #include "gpu/many_light_upload.h"
-#include "gpu/shared/light_tree_build_layout.h"
 
 namespace sst::gpu {
 namespace {
@@ -65,15 +64,89 @@ GpuLightTreeBuilder::GpuLightTreeBuilder(const VulkanContext& context) : context
   scatter_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_scatter", 6, push);
   hierarchy_ = std::make_unique<ComputePipeline>(context, "light_tree_hierarchy", 4, push);
   merge_ = std::make_unique<ComputePipeline>(context, "light_tree_merge", 5, push);
+  perfect_leaves_ = std::make_unique<ComputePipeline>(context, "light_tree_perfect_leaves", 3, push);
+  perfect_merge_ = std::make_unique<ComputePipeline>(context, "light_tree_perfect_merge", 1, push);
 }
 
 GpuLightTreeBuilder::~GpuLightTreeBuilder() = default;
 
+// The sort keys and VPL ids, sorted by key (as the CPU's sort_vpls); `push` holds the grid.
+GpuLightTreeBuilder::Sorted GpuLightTreeBuilder::sort(const GpuBuffer& vpls, glsl::LightTreeBuildPush push,
+                                                      LightTreeBuildStats& stats) {
+  const uint32_t n = push.count, tiles = push.tile_count;
+  Sorted out;
+  out.keys = buffer(context_, size_t(n) * 8, "sort keys");
+  out.ids = buffer(context_, size_t(n) * 4, "VPL ids");
+  auto keys_swap = buffer(context_, size_t(n) * 8, "sort keys");
+  auto ids_swap = buffer(context_, size_t(n) * 4, "VPL ids");
+  auto counts = buffer(context_, size_t(kRadix) * tiles * 4, "radix counts");
+  auto totals = buffer(context_, size_t(kRadix) * 4, "radix totals");
+  stats.keys_ms = run(*keys_, {&vpls, out.keys.get(), out.ids.get()}, push, n);
+  // As the CPU: the id bits are ascending in input order and every pass is stable, so sorting
+  // bits [kIdBits, 64) gives the full keys' order.
+  for (int shift = kIdBits; shift < 64; shift += kDigitBits) {
+    push.shift = uint32_t(shift);
+    stats.sort_ms += run(*histogram_, {out.keys.get(), counts.get()}, push, tiles * kGroup);
+    stats.sort_ms += scan_->dispatch({counts.get(), totals.get()}, &push, kRadix);
+    stats.sort_ms += run(*scatter_,
+                         {out.keys.get(), out.ids.get(), counts.get(), totals.get(), keys_swap.get(), ids_swap.get()},
+                         push, tiles * kGroup);
+    std::swap(out.keys, keys_swap);
+    std::swap(out.ids, ids_swap);
+  }
+  return out;
+}
+
+// merge_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1).
+void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,
+                                      LightTree& tree, LightTreeBuildStats& stats) {
+  const uint32_t n = push.count, node_count = 2 * n - 1;
+  tree.root = 0;
+  tree.first_leaf = n - 1;
+  tree.leaf_count = n;
+  auto nodes = buffer(context_, size_t(node_count) * sizeof(LightNode), "nodes");
+  auto parents = buffer(context_, size_t(node_count) * 4, "parents");
+  auto visits = buffer(context_, size_t(std::max(n - 1, 1u)) * 4, "arrival counters");
+  static_cast<uint32_t*>(parents->data())[0] = kNoNode;  // the root's
+  push.first_leaf = n - 1;
+  push.count = n - 1;
+  if (n > 1)
+    stats.hierarchy_ms = run(*hierarchy_, {sorted.keys.get(), nodes.get(), parents.get(), visits.get()}, push, n - 1);
+  push.count = n;
+  // The merge runs one invocation per workgroup (see light_tree_merge.comp for why).
+  auto [mx, my] = std::pair<uint32_t, uint32_t>{std::min(n, kMaxGroupsX), (n + kMaxGroupsX - 1) / kMaxGroupsX};
+  stats.merge_ms =
+      merge_->dispatch({&vpls, sorted.ids.get(), parents.get(), visits.get(), nodes.get()}, &push, mx, my);
+  tree.nodes.resize(node_count);
+  nodes->download(std::span<LightNode>(tree.nodes));
+}
+
+// build_perfect_tree's heap: node 0 unused, root 1, leaves [L, 2L). The leaves in one pass, then
+// one pass per level, bottom-up (the CPU's subtree blocking only orders the same merges).
+void GpuLightTreeBuilder::build_perfect(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,
+                                        LightTree& tree, LightTreeBuildStats& stats) {
+  const uint32_t leaves = std::bit_ceil(push.count);
+  tree.root = 1;
+  tree.first_leaf = leaves;
+  tree.leaf_count = leaves;
+  auto nodes = buffer(context_, 2 * size_t(leaves) * sizeof(LightNode), "nodes");
+  push.first_leaf = leaves;
+  stats.merge_ms = run(*perfect_leaves_, {&vpls, sorted.ids.get(), nodes.get()}, push, leaves);
+  for (uint32_t level = leaves / 2; level >= 1; level /= 2) {
+    push.first_leaf = level;
+    push.count = level;
+    stats.merge_ms += run(*perfect_merge_, {nodes.get()}, push, level);
+  }
+  tree.nodes.resize(2 * size_t(leaves));
+  nodes->download(std::span<LightNode>(tree.nodes));
+}
+
 LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
                                      LightTreeBuildStats* stats_out, double* gpu_ms) {
   validate(params);
-  if (params.tree != "radix")
-    throw Error("GPU light tree: tree '" + params.tree + "' is built on the CPU only (the GPU builds 'radix')");
+  if (params.tree != "radix" && params.tree != "perfect")
+    throw Error("GPU light tree: tree '" + params.tree +
+                "' is built on the CPU only (the GPU builds 'radix' and 'perfect')");
   check_sort_key_capacity(vpls.size());
   LightTreeBuildStats stats;
   auto start = Clock::now();
@@ -88,54 +161,24 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
   tree.length_scale = length_scale(params, bounds, scene_bounds);
   tree.v_min = params.v_min;
   tree.sigma_max_abs = params.sigma_max * tree.length_scale;
-  tree.root = n == 0 ? kNoNode : 0;
-  tree.first_leaf = n == 0 ? 0 : n - 1;
-  tree.leaf_count = n;
+  tree.root = kNoNode;  // both builders' empty tree
+  tree.first_leaf = tree.leaf_count = 0;
   double gpu_total = 0.0;
   if (n > 0) {
-    const uint32_t node_count = 2 * n - 1, tiles = (n + kGroup - 1) / kGroup;
     MortonGrid grid = MortonGrid::over(bounds);
     glsl::LightTreeBuildPush push{};
     push.count = n;
-    push.tile_count = tiles;
-    push.first_leaf = n - 1;
+    push.tile_count = (n + kGroup - 1) / kGroup;
     push.grid_origin = grid.origin;
     push.grid_scale = grid.scale;
     push.v_min = tree.v_min;
     push.sigma_max_abs = tree.sigma_max_abs;
-
     auto gpu_vpls = upload_buffer(context_, pack_vpls(vpls), "GPU light tree: VPLs");
-    auto keys = buffer(context_, size_t(n) * 8, "sort keys");
-    auto ids = buffer(context_, size_t(n) * 4, "VPL ids");
-    auto keys_swap = buffer(context_, size_t(n) * 8, "sort keys");
-    auto ids_swap = buffer(context_, size_t(n) * 4, "VPL ids");
-    auto counts = buffer(context_, size_t(kRadix) * tiles * 4, "radix counts");
-    auto totals = buffer(context_, size_t(kRadix) * 4, "radix totals");
-    auto nodes = buffer(context_, size_t(node_count) * sizeof(LightNode), "nodes");
-    auto parents = buffer(context_, size_t(node_count) * 4, "parents");
-    auto visits = buffer(context_, size_t(std::max(n - 1, 1u)) * 4, "arrival counters");
-
-    stats.keys_ms = run(*keys_, {gpu_vpls.get(), keys.get(), ids.get()}, push, n);
-    // As the CPU: the id bits are ascending in input order and every pass is stable, so sorting
-    // bits [kIdBits, 64) gives the full keys' order.
-    for (int shift = kIdBits; shift < 64; shift += kDigitBits) {
-      push.shift = uint32_t(shift);
-      stats.sort_ms += run(*histogram_, {keys.get(), counts.get()}, push, tiles * kGroup);
-      stats.sort_ms += scan_->dispatch({counts.get(), totals.get()}, &push, kRadix);
-      stats.sort_ms += run(*scatter_, {keys.get(), ids.get(), counts.get(), totals.get(), keys_swap.get(), ids_swap.get()},
-                           push, tiles * kGroup);
-      std::swap(keys, keys_swap);
-      std::swap(ids, ids_swap);
-    }
-    static_cast<uint32_t*>(parents->data())[0] = kNoNode;  // the root's
-    push.count = n - 1;
-    if (n > 1) stats.hierarchy_ms = run(*hierarchy_, {keys.get(), nodes.get(), parents.get(), visits.get()}, push, n - 1);
-    push.count = n;
-    // The merge runs one invocation per workgroup (see light_tree_merge.comp for why).
-    auto [mx, my] = std::pair<uint32_t, uint32_t>{std::min(n, kMaxGroupsX), (n + kMaxGroupsX - 1) / kMaxGroupsX};
-    stats.merge_ms = merge_->dispatch({gpu_vpls.get(), ids.get(), parents.get(), visits.get(), nodes.get()}, &push, mx, my);
-    tree.nodes.resize(node_count);
-    nodes->download(std::span<LightNode>(tree.nodes));
+    Sorted sorted = sort(*gpu_vpls, push, stats);
+    if (params.tree == "radix")
+      build_radix(*gpu_vpls, sorted, push, tree, stats);
+    else
+      build_perfect(*gpu_vpls, sorted, push, tree, stats);
     gpu_total = stats.keys_ms + stats.sort_ms + stats.hierarchy_ms + stats.merge_ms;
   }
   stats.total_ms = ms_since(start);

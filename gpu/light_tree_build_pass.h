@@ -1,14 +1,19 @@
-// The light tree built on the GPU (issue 5): the twin of LightTreeBuilder::build for tree "radix"
-// (core/lighttree/light_tree.cpp), producing the same LightTree bit for bit (nodes memcmp-equal,
-// the same header fields) where the device's float division and sqrt are correctly rounded, as
-// on lavapipe. The stages are the CPU's, one compute pass each:
+// The light tree built on the GPU (issue 5): the twin of LightTreeBuilder::build for trees "radix"
+// and "perfect" (core/lighttree/light_tree.cpp), producing the same LightTree bit for bit (nodes
+// memcmp-equal, the same header fields) where the device's float division and sqrt are correctly
+// rounded, as on lavapipe. The stages are the CPU's, one compute pass each:
 //   VPL bounds, D, thresholds   host (compute_vpl_bounds: also checks every VPL; cheap)
 //   sort keys                   light_tree_keys.comp (one invocation per VPL)
 //   radix sort                  5 passes of 8 bits over key bits [25, 64), as the CPU: each
 //                               light_tree_sort_histogram / _scan / _scatter (stable)
+// then, for "radix" (radix_tree_builder.cpp):
 //   Karras hierarchy            light_tree_hierarchy.comp (one invocation per internal node)
 //   merge                       light_tree_merge.comp (one per leaf, one per workgroup: a lavapipe
 //                               bug, see there; atomic arrival counters)
+// or, for "perfect" (perfect_tree_builder.cpp; no topology to build, the heap's):
+//   leaves                      light_tree_perfect_leaves.comp (one invocation per leaf [L, 2L))
+//   merge                       light_tree_perfect_merge.comp, one dispatch per level bottom-up
+//                               (one invocation per parent)
 // Keys are uvec2 in the shaders: no shaderInt64 needed.
 #pragma once
 #include <memory>
@@ -16,6 +21,8 @@
 #include "core/lighttree/light_tree.h"
 #include "core/vpl/vpl.h"
 #include "gpu/compute_pipeline.h"
+#include "gpu/gpu_buffer.h"
+#include "gpu/shared/light_tree_build_layout.h"
 #include "gpu/vulkan_context.h"
 
 namespace sst::gpu {
@@ -33,15 +40,26 @@ class GpuLightTreeBuilder {
                   LightTreeBuildStats* stats = nullptr, double* gpu_ms = nullptr);
 
  private:
+  struct Sorted {
+    std::unique_ptr<GpuBuffer> keys, ids;  // by key, as the CPU's sort_vpls leaves its scratch
+  };
+  Sorted sort(const GpuBuffer& vpls, glsl::LightTreeBuildPush push, LightTreeBuildStats& stats);
+  void build_radix(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push, LightTree& tree,
+                   LightTreeBuildStats& stats);
+  void build_perfect(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push, LightTree& tree,
+                     LightTreeBuildStats& stats);
+
   const VulkanContext& context_;
   std::unique_ptr<ComputePipeline> keys_, histogram_, scan_, scatter_, hierarchy_, merge_;
+  std::unique_ptr<ComputePipeline> perfect_leaves_, perfect_merge_;
 };
 
 // build_light_tree(vpls, params, scene_bounds) on the GPU. Throws sst::Error as the CPU does (bad
-// parameters, too many VPLs, a bad VPL), and for a tree other than "radix" (not built on the GPU
-// yet). `stats`: bounds_ms is host wall time; keys_ms, sort_ms, hierarchy_ms and merge_ms are the
-// GPU times of those passes (timestamps); total_ms is the wall time of the whole call, uploads
-// and downloads included. `gpu_ms` (optional): the GPU time of all passes.
+// parameters, too many VPLs, a bad VPL), and for tree "agglomerative" (built on the CPU only).
+// `stats`: bounds_ms is host wall time; keys_ms, sort_ms, hierarchy_ms and merge_ms are the GPU
+// times of those passes (timestamps; a perfect tree's leaves and levels are merge_ms, as on the
+// CPU); total_ms is the wall time of the whole call, uploads and downloads included. `gpu_ms`
+// (optional): the GPU time of all passes.
 LightTree build_light_tree_gpu(const VulkanContext& context, const VplSet& vpls, const LightTreeParams& params,
                                const Bounds3* scene_bounds = nullptr, LightTreeBuildStats* stats = nullptr,
                                double* gpu_ms = nullptr);

@@ -1,7 +1,7 @@
 // ManyLightMethod on the Vulkan backend: the same stages as ManyLightMethod::render, with the VPLs
-// generated, radix light trees built, and the pixels sampled on the GPU. Perfect trees (rtslc,
-// hybrid) and the per-block cuts are built on the CPU by the sampler's own prepare() and uploaded
-// (the record says where each ran under "built_on").
+// generated, radix and perfect light trees built, and the pixels sampled on the GPU. The per-block
+// cuts (rtslc, hybrid) and agglomerative trees are built on the CPU by the sampler's own prepare()
+// and uploaded (the record says where each ran under "built_on").
 #include "core/manylight/gpu_sampler_inputs.h"
 #include "core/manylight/many_light_method.h"
 #include "core/vpl/vpl_ply.h"
@@ -27,14 +27,15 @@ FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer&
   if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
   ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
-  // Radix trees (slc's and sst's) are built on the GPU; the others on the CPU. The builder's
+  // Radix and perfect trees are built on the GPU, agglomerative ones on the CPU. The builder's
   // shaders are compiled in stage shader_compile, like the sampling shader.
+  auto on_gpu = [](const std::string& tree) { return tree == "radix" || tree == "perfect"; };
   std::unique_ptr<gpu::GpuLightTreeBuilder> tree_builder;
-  if (params_.value("tree", "") == "radix")
+  if (on_gpu(params_.value("tree", "")))
     tree_builder = timer.time("shader_compile", [&] { return std::make_unique<gpu::GpuLightTreeBuilder>(gpu.vulkan()); });
   sampler_->set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const Bounds3* scene_bounds,
                                  LightTreeBuildStats* stats, std::string* built_on) {
-    if (p.tree != "radix" || !tree_builder) return build_light_tree(v, p, scene_bounds, stats);
+    if (!on_gpu(p.tree) || !tree_builder) return build_light_tree(v, p, scene_bounds, stats);
     *built_on = "gpu";
     return tree_builder->build(v, p, scene_bounds, stats);
   });

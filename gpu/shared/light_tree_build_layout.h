@@ -1,7 +1,7 @@
 // The GPU light-tree build's push constants (gpu/light_tree_build_pass.h), defined once for C++ and
 // GLSL; the twin of the parameters LightTreeBuilder::build passes between its stages
 // (core/lighttree/light_tree.cpp): the Morton grid of sort_key.h, the radix sort's digit, the
-// node layout of a radix tree and the SST thresholds of substitute.h.
+// node layout of a radix or perfect (heap) tree and the SST thresholds of substitute.h.
 //
 // Sort keys cross the boundary as uvec2 (x = bits 0..31, y = bits 32..63: a uint64_t's bytes on
 // a little-endian host), so that no shader needs the shaderInt64 feature.
@@ -23,14 +23,16 @@ using glm::vec3;
 #define LTB_RADIX 256u
 
 struct LightTreeBuildPush {
-  uint count;          // elements: VPLs (keys, sort, merge) or internal nodes (hierarchy)
+  uint count;          // elements: VPLs (keys, sort, merge, perfect leaves), internal nodes
+                       // (hierarchy) or the nodes of one level (perfect merge)
   uint shift;          // sort: the digit's lowest key bit
   uint tile_count;     // sort: tiles of LTB_GROUP_SIZE keys, ceil(VPLs / LTB_GROUP_SIZE)
-  uint first_leaf;     // hierarchy, merge: node index of the first leaf (VPLs - 1)
+  uint first_leaf;     // hierarchy, merge: node index of the first leaf (VPLs - 1); perfect
+                       // leaves: L (leaves, a power of two); perfect merge: the level's first node
   vec3 grid_origin;    // keys: MortonGrid::origin
-  float v_min;         // merge: SubstituteThresholds::v_min
+  float v_min;         // merge, perfect: SubstituteThresholds::v_min
   vec3 grid_scale;     // keys: MortonGrid::scale
-  float sigma_max_abs; // merge: SubstituteThresholds::sigma_max_abs
+  float sigma_max_abs; // merge, perfect: SubstituteThresholds::sigma_max_abs
 };
 
 #ifdef __cplusplus

@@ -165,11 +165,14 @@ TEST(VulkanBackend, RecordNamesTheDeviceAndWhereEachStageRan) {
   EXPECT_EQ(r.frame.method_counters["built_on"]["sampling"], "gpu");
   EXPECT_GT(r.frame.method_counters["gpu_ms"]["sampling"].get<double>(), 0.0);
   EXPECT_GT(r.timer.ms("gpu_setup"), 0.0);
-  // rtslc's perfect tree and its cuts are built on the CPU.
+  // rtslc's perfect tree is built on the GPU, its cuts on the CPU; an agglomerative tree on the CPU.
   options.method = "rtslc";
   RenderResult rt = render_frame(load_default_scene(), options, {{"vpls", 256}});
-  EXPECT_EQ(rt.frame.method_counters["built_on"]["tree"], "cpu");
+  EXPECT_EQ(rt.frame.method_counters["built_on"]["tree"], "gpu");
   EXPECT_EQ(rt.frame.method_counters["built_on"]["cuts"], "cpu");
+  options.method = "slc";
+  RenderResult ag = render_frame(load_default_scene(), options, {{"vpls", 256}, {"tree", "agglomerative"}});
+  EXPECT_EQ(ag.frame.method_counters["built_on"]["tree"], "cpu");
 }
 
 }  // namespace

@@ -4,13 +4,6 @@
 
 namespace sst::gpu {
 
-GpuBvh::GpuBvh(const VulkanContext& context, const FlatBvh& bvh)
-    : nodes_(context, bvh.nodes.size() * sizeof(glsl::BvhNode)),
-      triangles_(context, bvh.triangles.size() * sizeof(glsl::BvhTriangle)) {
-  nodes_.upload(std::span<const glsl::BvhNode>(bvh.nodes));
-  triangles_.upload(std::span<const glsl::BvhTriangle>(bvh.triangles));
-}
-
 GBufferImages render_gbuffer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                              const PinholeCamera& camera, int width, int height, uint32_t seed, int spp) {
   glsl::FrameParams frame = frame_params(camera, width, height, seed);

@@ -7,7 +7,7 @@
 
 #include "core/lights/light_sampler.h"
 #include "core/scene/scene.h"
-#include "gpu/gbuffer_pass.h"
+#include "gpu/bvh_upload.h"
 #include "gpu/light_upload.h"
 #include "gpu/scene_upload.h"
 #include "gpu/vulkan_context.h"

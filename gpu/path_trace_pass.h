@@ -10,7 +10,7 @@
 
 #include "core/render/path_tracer.h"
 #include "gpu/compute_pipeline.h"
-#include "gpu/gbuffer_pass.h"
+#include "gpu/bvh_upload.h"
 #include "gpu/light_upload.h"
 #include "gpu/scene_upload.h"
 #include "gpu/vulkan_context.h"

@@ -12,6 +12,7 @@
 #include "core/accel/embree_accel.h"
 #include "core/util/error.h"
 #include "core/vpl/vpl_clamp.h"
+#include "gpu/compute_pipeline.h"
 
 namespace sst::gpu {
 namespace {

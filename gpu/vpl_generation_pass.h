@@ -11,7 +11,7 @@
 #include "core/scene/scene.h"
 #include "core/vpl/vpl.h"
 #include "core/vpl/vpl_generator.h"
-#include "gpu/gbuffer_pass.h"
+#include "gpu/bvh_upload.h"
 #include "gpu/light_upload.h"
 #include "gpu/scene_upload.h"
 #include "gpu/vulkan_context.h"

@@ -7,7 +7,15 @@
 #include "core/util/error.h"
 
 namespace sst {
-EmbreeAccel::EmbreeAccel(const Scene& scene, bool flat) {
+EmbreeAccel::EmbreeAccel(const Scene& scene, bool flat) : epsilon_(scene_ray_epsilon(scene)) {
+  // One structure per accel: the flat BVH answers every query when it is there.
+  if (flat)
+    flat_ = std::make_unique<FlatBvh>(build_flat_bvh(scene));
+  else
+    build_embree(scene);
+}
+
+void EmbreeAccel::build_embree(const Scene& scene) {
   device_ = rtcNewDevice("");
   if (!device_) throw Error("could not create an Embree device");
   scene_ = rtcNewScene(device_);
@@ -39,9 +47,6 @@ EmbreeAccel::EmbreeAccel(const Scene& scene, bool flat) {
   // exceptions: check once after the build, where they would surface.
   if (RTCError code = rtcGetDeviceError(device_); code != RTC_ERROR_NONE)
     throw Error("Embree could not build the acceleration structure (error " + std::to_string(int(code)) + ")");
-
-  epsilon_ = scene_ray_epsilon(scene);
-  if (flat) flat_ = std::make_unique<FlatBvh>(build_flat_bvh(scene));
 }
 
 float scene_ray_epsilon(const Scene& scene) {

@@ -72,6 +72,8 @@ class EmbreeAccel {
   }
 
  private:
+  void build_embree(const Scene& scene);
+
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   float epsilon_ = 0.0f;

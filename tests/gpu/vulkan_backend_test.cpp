@@ -92,6 +92,16 @@ RenderResult render(const Scene& scene, const Case& c, const std::string& backen
   return render_frame(scene, options, c.params);
 }
 
+// The block z-test's verdict: at most 5% outlier blocks, and the whole image within |z| < 3.29.
+void expect_statistical_agreement(const FrameOutput& gpu, const FrameOutput& cpu, const std::string& label) {
+  double z_all = 0.0;
+  double outliers = fraction_of_outlier_blocks(gpu, cpu, &z_all);
+  std::printf("%s statistical: %.1f%% of 8x8 blocks with |z| > 3.29, whole-image z %.2f\n", label.c_str(),
+              100.0 * outliers, z_all);
+  EXPECT_LE(outliers, 0.05);
+  EXPECT_LT(std::abs(z_all), 3.29);
+}
+
 void expect_backends_agree(const Scene& scene, const Case& c, Agreement agreement) {
   const int spp = agreement == Agreement::exact ? 2 : 8;
   RenderResult cpu = render(scene, c, "cpu", "flat", spp), gpu = render(scene, c, "vulkan", "embree", spp);
@@ -111,12 +121,9 @@ void expect_backends_agree(const Scene& scene, const Case& c, Agreement agreemen
     EXPECT_LT(indirect, 1e-3);
     return;
   }
-  double z_all = 0.0;
-  double outliers = fraction_of_outlier_blocks(gpu.frame, cpu.frame, &z_all);
-  std::printf("%-26s %-10s statistical: %.1f%% of 8x8 blocks with |z| > 3.29, whole-image z %.2f\n", name.c_str(),
-              c.method, 100.0 * outliers, z_all);
-  EXPECT_LE(outliers, 0.05);
-  EXPECT_LT(std::abs(z_all), 3.29);
+  char label[64];
+  std::snprintf(label, sizeof label, "%-26s %-10s", name.c_str(), c.method);
+  expect_statistical_agreement(gpu.frame, cpu.frame, label);
 }
 
 TEST(VulkanBackend, EveryMethodMatchesTheCpuOnTheCornellBox) {
@@ -142,12 +149,7 @@ TEST(VulkanBackend, SstAgreesStatisticallyWithTheEmbreeCpu) {
   Scene scene = load_gltf(path.string());
   Case c{"sst", {{"vpls", 2048}}, Agreement::statistical, Agreement::statistical};
   RenderResult cpu = render(scene, c, "cpu", "embree", 8), gpu = render(scene, c, "vulkan", "embree", 8);
-  double z_all = 0.0;
-  double outliers = fraction_of_outlier_blocks(gpu.frame, cpu.frame, &z_all);
-  std::printf("sst vulkan vs embree cpu: %.1f%% of blocks with |z| > 3.29, whole-image z %.2f\n", 100.0 * outliers,
-              z_all);
-  EXPECT_LE(outliers, 0.05);
-  EXPECT_LT(std::abs(z_all), 3.29);
+  expect_statistical_agreement(gpu.frame, cpu.frame, "sst vulkan vs embree cpu:");
 }
 
 TEST(VulkanBackend, RecordNamesTheDeviceAndWhereEachStageRan) {

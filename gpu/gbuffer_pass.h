@@ -21,7 +21,7 @@ struct GBufferImages {
   double gpu_ms = 0.0;             // the dispatch, from timestamps
 };
 
-// Renders `spp` samples per pixel (sample indices 0..spp-1 of PixelSampler(seed, pixel, i)).
+// Renders `spp` samples per pixel (sample indices 0..spp-1 of pixel_sampler(seed, pixel, i)).
 GBufferImages render_gbuffer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                              const PinholeCamera& camera, int width, int height, uint32_t seed, int spp);
 

@@ -25,7 +25,7 @@ struct GpuPathTraceResult {
   int dispatches = 0;
 };
 
-// Renders `spp` camera paths per pixel (sample indices 0..spp-1 of PixelSampler(seed, pixel, i)),
+// Renders `spp` camera paths per pixel (sample indices 0..spp-1 of pixel_sampler(seed, pixel, i)),
 // as PathTracer::render does with the same seed, params and diffuse_only. `ray_epsilon` is
 // scene_ray_epsilon(scene) (core/accel/embree_accel.h). Samples are dispatched in chunks (the
 // first of one sample per pixel, the rest sized from its time; gpu/sample_chunks.h), so no single

@@ -48,8 +48,8 @@ bool emit_point_or_spot(const PunctualLight& light, vec2 u_dir, EmissionSample& 
   float cos_t = 1.0f - u_dir.x * one_minus_cos;
   float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
   float phi = 2.0f * kPi * u_dir.y;
-  out.direction = glm::normalize(Frame::from_normal(light.direction)
-                                     .to_world(vec3(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t)));
+  vec3 local(sin_t * std::cos(phi), sin_t * std::sin(phi), cos_t);
+  out.direction = glm::normalize(to_world(basis_from_normal(light.direction), local));
   // I att(w) / pdf, pdf = 1 / (2 pi (1 - cos_outer)): uniform over the cone's solid angle.
   out.weight = light.intensity * (spot_attenuation(light, out.direction) * 2.0f * kPi * one_minus_cos);
   return true;
@@ -61,10 +61,10 @@ bool emit_point_or_spot(const PunctualLight& light, vec2 u_dir, EmissionSample& 
 bool emit_directional(const PunctualLight& light, const Bounds3& bounds, vec2 u_pos, EmissionSample& out) {
   float r = 0.5f * bounds.diagonal();
   if (!(r > 0.0f) || !std::isfinite(r)) return false;
-  Frame frame = Frame::from_normal(light.direction);
+  Basis basis = basis_from_normal(light.direction);
   float rho = r * std::sqrt(u_pos.x), phi = 2.0f * kPi * u_pos.y;
   out.position = bounds.center() - light.direction * (1.01f * r) +
-                 frame.t * (rho * std::cos(phi)) + frame.b * (rho * std::sin(phi));
+                 basis.t * (rho * std::cos(phi)) + basis.b * (rho * std::sin(phi));
   out.direction = light.direction;
   out.weight = light.intensity * (kPi * r * r);
   return true;
@@ -149,7 +149,7 @@ bool LightSampler::sample(vec3 p, vec2 u, LightSample& out) const {
   vec2 b;
   float solid_angle_pdf = 0.0f;
   bool spherical = uses_solid_angle_sampling(p, v0, v1, v2) &&
-                   sample_spherical_triangle(p, v0, v1, v2, vec2(u1, u2), &b, &solid_angle_pdf);
+                   sample_spherical_triangle(p, v0, v1, v2, vec2(u1, u2), b, solid_angle_pdf);
   if (!spherical) b = sample_uniform_triangle(u1, u2);
   vec3 y = (1.0f - b.x - b.y) * v0 + b.x * v1 + b.y * v2;
   vec3 d = y - p;
@@ -225,7 +225,7 @@ bool LightSampler::emit_triangle(size_t k, vec2 u_pos, vec2 u_dir, EmissionSampl
   out.normal = front ? ng : -ng;
   vec3 local = sample_cosine_hemisphere(u_side, u_dir.y);
   if (!(local.z > 0.0f)) return false;  // grazing: zero pdf and zero cosine
-  out.direction = glm::normalize(Frame::from_normal(out.normal).to_world(local));
+  out.direction = glm::normalize(to_world(basis_from_normal(out.normal), local));
   float sides = double_sided ? 2.0f : 1.0f;
   out.weight = triangle_emission(*scene_, tri, b, front) * (kPi * triangle_area_[k] * sides);
   return true;

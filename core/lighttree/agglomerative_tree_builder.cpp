@@ -49,7 +49,7 @@ vec3 union_axis(const Cluster& a, const Cluster& b, float theta) {
   // Rotate a's axis towards b's by theta - a.theta, in their common plane.
   vec3 ortho = b.axis - glm::dot(a.axis, b.axis) * a.axis;
   float length = glm::length(ortho);
-  vec3 dir = length > 1e-6f ? ortho / length : Frame::from_normal(a.axis).t;  // opposite axes
+  vec3 dir = length > 1e-6f ? ortho / length : basis_from_normal(a.axis).t;  // opposite axes
   float r = theta - a.theta;
   return glm::normalize(std::cos(r) * a.axis + std::sin(r) * dir);
 }

@@ -1,24 +1,103 @@
-// Bounds of a light-tree node's box as seen from a shading point x: what every tree sampler's
-// weights are built from (SLC, SST, RTSLC, the hybrid's cuts).
-#pragma once
-#include "core/math/math.h"
+// Bounds of a light-tree node's box [lo, hi] as seen from a shading point x: what every tree
+// sampler's weights are built from (SLC, SST, RTSLC, the hybrid's cuts), on both backends
+// (shared C++/GLSL source). Decisions taken on these values (which child, whether a box is
+// behind the surface) must be the same on the CPU and the GPU, hence the precise temporaries.
+#ifndef SST_CORE_LIGHTTREE_BOX_BOUNDS_H
+#define SST_CORE_LIGHTTREE_BOX_BOUNDS_H
+#include "core/math/vector_math.h"
 
-namespace sst {
+SST_BEGIN
+
+// lo > hi on some axis: an empty box (a padding leaf's box is lo = +inf, hi = -inf).
+SST_FUNC bool box_empty(vec3 lo, vec3 hi) { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+
+SST_FUNC bool box_inside(vec3 lo, vec3 hi, vec3 x) {
+  return x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
+}
+
+SST_FUNC vec3 box_center(vec3 lo, vec3 hi) {
+  SST_PRECISE vec3 c = 0.5f * (lo + hi);
+  return c;
+}
+
+// Length of the box's diagonal (0 for an empty box).
+SST_FUNC float box_diagonal(vec3 lo, vec3 hi) {
+  SST_PRECISE vec3 e = hi - lo;
+  return box_empty(lo, hi) ? 0.0f : length3(e);
+}
 
 // Squared distance from x to the box (0 inside; +inf for an empty box).
-float box_distance2_min(const Bounds3& box, vec3 x);
+SST_FUNC float box_distance2_min(vec3 lo, vec3 hi, vec3 x) {
+  if (box_empty(lo, hi)) return kInf;
+  SST_PRECISE vec3 below = lo - x;
+  SST_PRECISE vec3 above = x - hi;
+  vec3 d = max(max(below, above), vec3(0.0f));
+  return dot3(d, d);
+}
+
 // Squared distance from x to the farthest point of the box: sum over axes of
 // max(|lo - x|, |hi - x|)^2 (RTSLC's dmax^2).
-float box_distance2_max(const Bounds3& box, vec3 x);
+SST_FUNC float box_distance2_max(vec3 lo, vec3 hi, vec3 x) {
+  SST_PRECISE vec3 a = lo - x;
+  SST_PRECISE vec3 b = hi - x;
+  vec3 d = max(abs(a), abs(b));
+  return dot3(d, d);
+}
+
+// Smallest |t| over [lo, hi]: 0 when the interval straddles 0.
+SST_FUNC float box_min_abs(float lo, float hi) { return lo <= 0.0f && hi >= 0.0f ? 0.0f : min(abs(lo), abs(hi)); }
 
 // Upper bounds of max(0, n . normalize(y - x)) over the points y of the box, 1 when x is inside.
 // Both are conservative; they trade tightness for cost:
-// - box_cos_bound (Walter 2005): the corners are taken to n's frame and the bound is that of the
+// - box_cos_bound (Walter 2005): the corners are taken to n's basis and the bound is that of the
 //   AABB of the transformed corners. Tight; used by slc and sst.
 // - box_cos_bound_linear: min(1, max_y n.(y - x) / dmin), the exact maximum of a linear function
 //   over the box over a lower bound of |y - x|. Cheap, tight for far boxes; used by rtslc's
 //   weights and the cuts.
-float box_cos_bound(const Bounds3& box, vec3 x, vec3 n);
-float box_cos_bound_linear(const Bounds3& box, vec3 x, vec3 n);
+SST_FUNC float box_cos_bound(vec3 lo, vec3 hi, vec3 x, vec3 n) {
+  if (box_empty(lo, hi)) return 0.0f;
+  if (box_inside(lo, hi, x)) return 1.0f;
+  Basis f = basis_from_normal(n);
+  vec3 llo = vec3(kInf);
+  vec3 lhi = vec3(-kInf);
+  for (int c = 0; c < 8; ++c) {
+    vec3 corner = vec3((c & 1) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y, (c & 4) != 0 ? hi.z : lo.z);
+    SST_PRECISE vec3 d = corner - x;
+    vec3 l = to_local(f, d);
+    llo = min(llo, l);
+    lhi = max(lhi, l);
+  }
+  if (!(lhi.z > 0.0f)) return 0.0f;  // wholly below the tangent plane
+  float dx = box_min_abs(llo.x, lhi.x);
+  float dy = box_min_abs(llo.y, lhi.y);
+  SST_PRECISE float len2 = dx * dx + dy * dy + lhi.z * lhi.z;
+  return len2 > 0.0f ? min(1.0f, lhi.z / sqrt(len2)) : 1.0f;
+}
 
+SST_FUNC float box_cos_bound_linear(vec3 lo, vec3 hi, vec3 x, vec3 n) {
+  float d2 = box_distance2_min(lo, hi, x);
+  if (!(d2 > 0.0f)) return 1.0f;  // x in the box: every direction may occur
+  SST_PRECISE vec3 l = lo - x;
+  SST_PRECISE vec3 h = hi - x;
+  // max over the box of n . (y - x): per axis the larger of the two ends.
+  SST_PRECISE vec3 nl = n * l;
+  SST_PRECISE vec3 nh = n * h;
+  SST_PRECISE float zmax = max(nl.x, nh.x) + max(nl.y, nh.y) + max(nl.z, nh.z);
+  if (!(zmax > 0.0f)) return 0.0f;
+  return min(1.0f, zmax / sqrt(d2));
+}
+
+SST_END
+
+#ifdef __cplusplus
+#include "core/math/math.h"
+namespace sst {
+// The same bounds for a C++ Bounds3.
+inline float box_distance2_min(const Bounds3& b, vec3 x) { return box_distance2_min(b.lo, b.hi, x); }
+inline float box_distance2_max(const Bounds3& b, vec3 x) { return box_distance2_max(b.lo, b.hi, x); }
+inline float box_cos_bound(const Bounds3& b, vec3 x, vec3 n) { return box_cos_bound(b.lo, b.hi, x, n); }
+inline float box_cos_bound_linear(const Bounds3& b, vec3 x, vec3 n) { return box_cos_bound_linear(b.lo, b.hi, x, n); }
 }  // namespace sst
+#endif
+
+#endif  // SST_CORE_LIGHTTREE_BOX_BOUNDS_H

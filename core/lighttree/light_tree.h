@@ -50,7 +50,7 @@ struct LightNode {
   uint32_t vpl_count;
   vec3 mean;         // SST p: luminance-weighted mean position
   float similarity;  // SST v = v1 v2 max(n1.n2, 0); 1 at leaves
-  vec3 normal;       // SST n: unit; defines the local frame Frame::from_normal(normal)
+  vec3 normal;       // SST n: unit; defines the local frame basis_from_normal(normal)
   float sigma_z;     // SST sqrt(variance.z); 0 at leaves
   vec3 variance;     // SST s2 in the local frame (x, y on the tangent plane, z along normal)
   uint32_t flags;

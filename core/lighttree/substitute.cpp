@@ -33,7 +33,7 @@ void merge_substitutes(LightNode& parent, const LightNode& a, const LightNode& b
   float length = std::sqrt(glm::dot(normal_sum, normal_sum));
   // One division instead of glm's three: this merge is the build's hot loop.
   parent.normal = length > 1e-4f ? normal_sum * (1.0f / length) : (c2 > c1 ? b.normal : a.normal);
-  vec3 local = Frame::from_normal(parent.normal).to_local(delta);
+  vec3 local = to_local(basis_from_normal(parent.normal), delta);
   float spread = weighted ? t * (1.0f - t) : 0.0f;
   parent.variance = weighted ? (1.0f - t) * a.variance + t * b.variance + spread * (local * local) : vec3(0.0f);
   parent.similarity = a.similarity * b.similarity * std::max(glm::dot(a.normal, b.normal), 0.0f);

@@ -5,13 +5,13 @@
 //   p  = (c1 p1 + c2 p2) / (c1 + c2)                                              (eq. 1)
 //   n  = normalize(c1 n1 + c2 n2)
 //   s2 = (c1 (s2_1 + d1*d1) + c2 (s2_2 + d2*d2)) / (c1 + c2)                       (eq. 2)
-//        d_i = Frame::from_normal(n).to_local(p_i - p), '*' element-wise
+//        d_i = to_local(basis_from_normal(n), p_i - p), '*' element-wise
 //   v  = v1 v2 max(n1.n2, 0),  sigma_z = sqrt(s2.z)
 //   suitable iff v >= v_min and sigma_z <= sigma_max_abs                           (eq. 3)
 // computed in the rearranged, equivalent form of substitute.cpp (t = c2 / (c1 + c2)).
 //
 // Children's variances. s2_i is the diagonal of child i's covariance in *its own* frame
-// (Frame::from_normal(n_i)); eq. 2 adds it to the parent's offsets unchanged, without rotating
+// (basis_from_normal(n_i)); eq. 2 adds it to the parent's offsets unchanged, without rotating
 // it into the parent's frame, and we follow the paper. The paper says so itself: "strongly
 // diverging normals will alter the cluster coordinate system and thus partially invalidate the
 // local variance values during merging", which is what v and sigma_z guard against. What this
@@ -19,7 +19,7 @@
 // weighted mean squared distance from p whatever the frames (parallel-axis theorem); and every
 // component when all normals of the subtree are equal (then all frames are the same). What it
 // approximates: how that total splits over the three axes when normals differ. The tangent
-// frame of Frame::from_normal (Duff et al. 2017) jumps where n.z changes sign (walls), turning
+// frame of basis_from_normal (Duff et al. 2017) jumps where n.z changes sign (walls), turning
 // the tangent axes about n; that may swap s2.x and s2.y between children, never s2.z.
 //
 // Edge cases (DESIGN.md: handled where they arise):

@@ -6,7 +6,7 @@
 namespace sst {
 
 vec3 shade_vpl(const ManyLightFrame& frame, const ShadingPoint& point, const Vpl& vpl, uint32_t* shadow_rays) {
-  vec3 c = vpl_contribution(vpl, point.p, point.ng, point.frame, point.brdf, point.wo, frame.clamp_distance);
+  vec3 c = vpl_contribution(vpl, point.p, point.ng, point.basis, point.brdf, point.wo, frame.clamp_distance);
   if (max_component(c) <= 0.0f) return vec3(0.0f);
   ++*shadow_rays;
   if (frame.context.accel.occluded(vpl_shadow_ray(frame.context.accel, point.p, point.ng, vpl))) return vec3(0.0f);

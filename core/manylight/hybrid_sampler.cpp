@@ -51,7 +51,7 @@ uint32_t first_leaf_below(const LightTree& tree, uint32_t node) {
 
 // Two standard normal deviates (Box-Muller).
 vec2 normal_pair(PixelSampler& sampler) {
-  vec2 u = sampler.get2d();
+  vec2 u = pixel_sampler_get2d(sampler);
   float r = std::sqrt(-2.0f * std::log(1.0f - u.x));  // u.x < 1: finite
   float phi = 2.0f * float(M_PI) * u.y;
   return {r * std::cos(phi), r * std::sin(phi)};
@@ -63,7 +63,7 @@ vec2 normal_pair(PixelSampler& sampler) {
 Vpl sample_substitute(const LightNode& node, PixelSampler& sampler) {
   vec2 a = normal_pair(sampler), b = normal_pair(sampler);
   vec3 sd = glm::sqrt(glm::max(node.variance, vec3(0.0f)));
-  vec3 offset = Frame::from_normal(node.normal).to_world(vec3(a.x, a.y, b.x) * sd);
+  vec3 offset = to_world(basis_from_normal(node.normal), vec3(a.x, a.y, b.x) * sd);
   Vpl v;
   v.position = glm::clamp(node.mean + offset, node.bounds_lo, node.bounds_hi);
   v.normal = node.normal;
@@ -120,11 +120,11 @@ void HybridSampler::traverse(const ManyLightFrame& frame, const ShadingPoint& po
       e.value += shade_vpl(frame, point, sample_substitute(node, sampler), &e.shadow_rays) / prob;
       return;
     }
-    float w0 = hybrid_weight(tree_[node.left], point.p, point.frame.n, frame.clamp_distance);
-    float w1 = hybrid_weight(tree_[node.right], point.p, point.frame.n, frame.clamp_distance);
+    float w0 = hybrid_weight(tree_[node.left], point.p, point.basis.n, frame.clamp_distance);
+    float w1 = hybrid_weight(tree_[node.right], point.p, point.basis.n, frame.clamp_distance);
     if (!(w0 + w1 > 0.0f)) return;  // neither child is expected to contribute: no backtracking
     float p0 = w0 / (w0 + w1);
-    bool left = sampler.get1d() < p0;
+    bool left = pixel_sampler_get1d(sampler) < p0;
     prob *= left ? p0 : 1.0f - p0;
     i = left ? node.left : node.right;
   }
@@ -147,7 +147,7 @@ IndirectEstimate HybridSampler::estimate(const ManyLightFrame& frame, const Shad
     int cy = std::clamp(by + (c >> 1), 0, cuts_.grid.blocks_y - 1);
     blocks[c] = size_t(cy) * size_t(cuts_.grid.blocks_x) + size_t(cx);
     const GBufferSample& g = cuts_.guides[blocks[c]];
-    bool similar = g.valid && glm::dot(g.n, point.frame.n) > params_.n_min && glm::distance(g.p, point.p) < d_max_abs_;
+    bool similar = g.valid && glm::dot(g.n, point.basis.n) > params_.n_min && glm::distance(g.p, point.p) < d_max_abs_;
     p[c] = similar ? ((c & 1) ? tx : 1.0f - tx) * ((c >> 1) ? ty : 1.0f - ty) : 0.0f;
     sum += p[c];
   }
@@ -156,7 +156,7 @@ IndirectEstimate HybridSampler::estimate(const ManyLightFrame& frame, const Shad
     return e;
   }
   for (uint32_t i = 0; i < uint32_t(params_.cut_size); ++i) {
-    float u = sampler.get1d() * sum;
+    float u = pixel_sampler_get1d(sampler) * sum;
     int c = 0;
     while (c < 3 && (u >= p[c] || p[c] == 0.0f)) {
       u -= p[c];

@@ -30,8 +30,8 @@ using LightTreeBuildFn = std::function<LightTree(const VplSet& vpls, const Light
 struct ShadingPoint {
   vec3 p{0.0f};
   vec3 ng{0.0f};  // geometric normal on the viewer's side
-  Frame frame;    // shading frame (frame.n = shading normal)
-  vec3 wo{0.0f};  // toward the viewer, in the shading frame
+  Basis basis;    // shading basis (basis.n = shading normal)
+  vec3 wo{0.0f};  // toward the viewer, in the shading basis
   Brdf brdf;
   int x = 0, y = 0;  // pixel
 };

@@ -14,9 +14,9 @@ ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_on
   ShadingPoint sp;
   sp.p = s.p;
   sp.ng = s.ng;
-  sp.frame = Frame::from_normal(s.ns);
-  sp.wo = sp.frame.to_local(-glm::normalize(ray_direction));
-  sp.brdf = Brdf::from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
+  sp.basis = basis_from_normal(s.ns);
+  sp.wo = to_local(sp.basis, -glm::normalize(ray_direction));
+  sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
   sp.x = x;
   sp.y = y;
   return sp;
@@ -65,8 +65,8 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
       uint64_t nodes = 0, samples = 0;
       std::vector<uint32_t> depths;
       for (int i = 0; i < spp; ++i) {
-        PixelSampler sampler(ctx.options.seed, pixel, uint32_t(i));
-        vec2 jitter = sampler.get2d();
+        PixelSampler sampler = pixel_sampler(ctx.options.seed, pixel, uint32_t(i));
+        vec2 jitter = pixel_sampler_get2d(sampler);
         Ray ray = ctx.camera.generate(float(x) + jitter.x, float(y) + jitter.y);
         Surface hit;
         PathSample d = trace_path(ctx, direct_only, ray, sampler, rc, &hit);

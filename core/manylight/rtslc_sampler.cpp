@@ -94,7 +94,7 @@ TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, 
     if (node.is_leaf()) break;
     auto [p0, p1] = child_probabilities(tree, node, x, n, weights);
     if (!(p0 + p1 > 0.0f)) return s;  // dead branch: no estimate, no shadow ray
-    float u = sampler.get1d();
+    float u = pixel_sampler_get1d(sampler);
     bool left = u < p0;
     prob *= left ? p0 : p1;
     i = left ? node.left : node.right;
@@ -137,9 +137,9 @@ void RtslcSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohm
   // pivot does not take every split.
   const float min_distance = 0.001f * ctx.scene.bounds.diagonal();
   auto random_pivot = [&](const BlockRect& r) {
-    HashRng rng(ctx.options.seed, uint32_t(r.index), 0, 0x52544C43u);  // "RTLC": the pivot stream
-    int px = r.x0 + std::min(int(rng.next() * float(r.w)), r.w - 1);
-    int py = r.y0 + std::min(int(rng.next() * float(r.h)), r.h - 1);
+    HashRng rng = hash_rng(ctx.options.seed, uint32_t(r.index), 0, 0x52544C43u);  // "RTLC": the pivot stream
+    int px = r.x0 + std::min(int(hash_rng_next(rng) * float(r.w)), r.w - 1);
+    int py = r.y0 + std::min(int(hash_rng_next(rng) * float(r.h)), r.h - 1);
     return glm::ivec2(px, py);
   };
   auto error = [&](const LightNode& node, const GBufferSample& g) {
@@ -163,7 +163,7 @@ IndirectEstimate RtslcSampler::estimate(const ManyLightFrame& frame, const Shadi
   const uint32_t slot = (r * (uint32_t(point.y) % r) + uint32_t(point.x) % r + frame_index_) % slots;
   std::span<const uint32_t> cut = cuts_.cut(cuts_.grid.index(point.x, point.y));
   for (uint32_t i = slot; i < cut.size(); i += slots) {
-    TreeSample s = rtslc_traverse(tree_, cut[i], point.p, point.frame.n, sampler, weights_);
+    TreeSample s = rtslc_traverse(tree_, cut[i], point.p, point.basis.n, sampler, weights_);
     e.nodes_visited += s.nodes_visited;
     if (s.node == kNoNode) continue;
     const Vpl& vpl = frame.vpls[tree_[s.node].vpl()];

@@ -79,13 +79,13 @@ std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& 
 }
 
 std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, const ShadingPoint& point) {
-  return slc_child_weights(left, right, point.p, point.frame.n);
+  return slc_child_weights(left, right, point.p, point.basis.n);
 }
 
 IndirectEstimate SlcSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                                       PixelSampler& sampler) const {
   IndirectEstimate e;
-  TreeTraversal t = traverse_tree(tree_, slc_weights(point), stop_at_leaves, [&] { return sampler.get1d(); });
+  TreeTraversal t = traverse_tree(tree_, slc_weights(point), stop_at_leaves, [&] { return pixel_sampler_get1d(sampler); });
   e.nodes_visited = t.nodes_visited;
   if (t.node == kNoNode || !(t.probability > 0.0)) return e;
   uint32_t vpl = tree_[t.node].vpl();

@@ -45,7 +45,7 @@ vec3 divide_by_probability(vec3 c, double p);
 
 // Yuksel's weights at shading position x with shading normal n (rtslc's `weights slc` uses them too).
 std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, vec3 x, vec3 n);
-// The same at `point` (x = point.p, n = point.frame.n).
+// The same at `point` (x = point.p, n = point.basis.n).
 std::array<double, 2> slc_child_weights(const LightNode& left, const LightNode& right, const ShadingPoint& point);
 inline ChildWeights slc_weights(const ShadingPoint& point) {
   return [&point](const LightNode& l, const LightNode& r) { return slc_child_weights(l, r, point); };

@@ -40,13 +40,13 @@ vec3 glossy_direction(vec3 x, vec3 r, const Bounds3& b) {
 }
 
 double material_bound(const LightNode& node, const ShadingPoint& point, SstLobe lobe) {
-  float cos_bound = box_cos_bound(node.bounds(), point.p, point.frame.n);
+  float cos_bound = box_cos_bound(node.bounds(), point.p, point.basis.n);
   if (!(cos_bound > 0.0f)) return 0.0;
   if (lobe == SstLobe::diffuse) return double(luminance(point.brdf.diffuse)) * kInvPiF * cos_bound;
-  vec3 wo_world = point.frame.to_world(point.wo);
-  vec3 mirror = 2.0f * glm::dot(point.frame.n, wo_world) * point.frame.n - wo_world;
-  vec3 wi = point.frame.to_local(glossy_direction(point.p, mirror, node.bounds()));
-  float f = luminance(point.brdf.eval(point.wo, wi));
+  vec3 wo_world = to_world(point.basis, point.wo);
+  vec3 mirror = 2.0f * glm::dot(point.basis.n, wo_world) * point.basis.n - wo_world;
+  vec3 wi = to_local(point.basis, glossy_direction(point.p, mirror, node.bounds()));
+  float f = luminance(brdf_eval(point.brdf, point.wo, wi));
   // The floor keeps every box above the surface reachable (see the header).
   float floor = 1e-3f * std::max(luminance(point.brdf.f0), 1e-6f);
   return double(std::isfinite(f) ? f + floor : floor) * cos_bound;
@@ -98,7 +98,7 @@ vec3 standard_normals(vec2 a, vec2 b) {
 vec3 substitute_position(const LightNode& node, vec3 normals) {
   vec3 sd(std::sqrt(std::max(node.variance.x, 0.0f)), std::sqrt(std::max(node.variance.y, 0.0f)),
           std::max(node.sigma_z, 0.0f));
-  vec3 offset = Frame::from_normal(node.normal).to_world(sd * normals);
+  vec3 offset = to_world(basis_from_normal(node.normal), sd * normals);
   vec3 p = node.mean + (is_finite(offset) ? offset : vec3(0.0f));
   // The box holds every VPL of the node: a draw outside it would be light from nowhere.
   return glm::clamp(p, node.bounds_lo, node.bounds_hi);
@@ -107,13 +107,13 @@ vec3 substitute_position(const LightNode& node, vec3 normals) {
 IndirectEstimate SstSampler::estimate(const ManyLightFrame& frame, const ShadingPoint& point,
                                       PixelSampler& sampler) const {
   IndirectEstimate e;
-  float p_glossy = point.brdf.specular ? std::clamp(point.brdf.specular_probability(point.wo), 0.0f, 1.0f) : 0.0f;
+  float p_glossy = point.brdf.specular ? std::clamp(brdf_specular_probability(point.brdf, point.wo), 0.0f, 1.0f) : 0.0f;
   SstLobe lobe = SstLobe::diffuse;
   double p_lobe = 1.0;
   if (p_glossy >= 1.0f) {
     lobe = SstLobe::glossy;
   } else if (p_glossy > 0.0f) {
-    bool glossy = sampler.get1d() < p_glossy;
+    bool glossy = pixel_sampler_get1d(sampler) < p_glossy;
     lobe = glossy ? SstLobe::glossy : SstLobe::diffuse;
     p_lobe = glossy ? p_glossy : 1.0 - p_glossy;
   }
@@ -121,7 +121,7 @@ IndirectEstimate SstSampler::estimate(const ManyLightFrame& frame, const Shading
   if (point.brdf.specular) lp.brdf = lobe_brdf(point.brdf, lobe);
 
   TreeTraversal t = traverse_tree(tree_, sst_weights(lp, sst_.distance_floor * tree_.length_scale, lobe), sst_stop_rule(lobe, sst_.substitutes),
-                                  [&] { return sampler.get1d(); });
+                                  [&] { return pixel_sampler_get1d(sampler); });
   e.nodes_visited = t.nodes_visited;
   if (t.node == kNoNode) return e;
   const LightNode& node = tree_[t.node];
@@ -130,7 +130,7 @@ IndirectEstimate SstSampler::estimate(const ManyLightFrame& frame, const Shading
     if (node.vpl() == kNoNode || node.vpl() >= frame.vpls.size()) return e;
     vpl = frame.vpls[node.vpl()];
   } else {
-    vec2 a = sampler.get2d(), b = sampler.get2d();
+    vec2 a = pixel_sampler_get2d(sampler), b = pixel_sampler_get2d(sampler);
     vpl = Vpl{substitute_position(node, standard_normals(a, b)), node.normal, node.intensity};
   }
   e.value = divide_by_probability(shade_vpl(frame, lp, vpl, &e.shadow_rays), t.probability * p_lobe);

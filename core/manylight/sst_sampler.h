@@ -2,7 +2,7 @@
 //
 // Per indirect sample:
 // 1. Lobe. A BRDF with a specular lobe picks the glossy lobe with probability
-//    Brdf::specular_probability(wo) (the path tracer's choice: Fresnel-weighted luminance of F0
+//    brdf_specular_probability(brdf, wo) (the path tracer's choice: Fresnel-weighted luminance of F0
 //    against the diffuse albedo's luminance, clamped to [0.1, 0.9]; 1 for a pure metal), else
 //    the diffuse lobe; a diffuse-only BRDF always takes the diffuse lobe. The paper chooses "by
 //    the magnitude of the material terms" without a formula; this is one. Each lobe shades with
@@ -22,7 +22,7 @@
 //    (substitutes would blur highlights).
 // 4. Shade. A leaf: its VPL. A suitable internal node: a position drawn from the node's Gaussian
 //    (three normal deviates scaled by sqrt(variance.x), sqrt(variance.y), sigma_z in the frame
-//    Frame::from_normal(normal) about the mean), clamped into the node's box, shaded through
+//    basis_from_normal(normal) about the mean), clamped into the node's box, shaded through
 //    shade_vpl as Vpl{position, node normal, node summed intensity}. Divided by the walk's
 //    probability and the lobe's.
 //

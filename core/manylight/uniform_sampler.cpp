@@ -10,7 +10,7 @@ IndirectEstimate UniformSampler::estimate(const ManyLightFrame& frame, const Sha
   IndirectEstimate e;
   size_t n = frame.vpls.size();
   if (n == 0) return e;
-  size_t j = std::min(n - 1, size_t(sampler.get1d() * float(n)));
+  size_t j = std::min(n - 1, size_t(pixel_sampler_get1d(sampler) * float(n)));
   e.value = shade_vpl(frame, point, frame.vpls[j], &e.shadow_rays) * float(n);
   return e;
 }

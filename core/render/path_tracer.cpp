@@ -8,14 +8,14 @@ namespace sst {
 namespace {
 
 // Next-event estimation at surface s: one light sample, one shadow ray, MIS-weighted.
-vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf, const Frame& frame, vec3 wo,
+vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf, const Basis& basis, vec3 wo,
                    vec2 u, RayCounters& counters) {
   LightSample ls;
   if (!ctx.lights.sample(s.p, u, ls)) return vec3(0.0f);
   // Light from behind the geometric surface would leak through it: nothing is transmitted.
   if (glm::dot(ls.wi, s.ng) <= 0.0f) return vec3(0.0f);
-  vec3 wi = frame.to_local(ls.wi);
-  vec3 f = brdf.eval(wo, wi);
+  vec3 wi = to_local(basis, ls.wi);
+  vec3 f = brdf_eval(brdf, wo, wi);
   if (wi.z <= 0.0f || max_component(f) <= 0.0f || max_component(ls.li) <= 0.0f) return vec3(0.0f);
   Ray shadow;
   if (std::isinf(ls.distance)) {
@@ -26,7 +26,7 @@ vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf,
   }
   ++counters.shadow_rays;
   if (ctx.accel.occluded(shadow)) return vec3(0.0f);
-  float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, brdf.pdf(wo, wi));
+  float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, brdf_pdf(brdf, wo, wi));
   return f * wi.z * ls.li * (weight / ls.pdf);
 }
 
@@ -50,20 +50,20 @@ PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, 
   // vertices 1 .. max_bounces+1 gather light, and vertex 1's share is the direct layer.
   for (int k = 1; k <= params.max_bounces + 1; ++k) {
     vec3& target = k == 1 ? out.direct : out.indirect;
-    Brdf brdf = Brdf::from_material(s.base_color, s.metallic, s.roughness, ctx.options.diffuse_only);
-    Frame frame = Frame::from_normal(s.ns);
-    vec3 wo = frame.to_local(-glm::normalize(ray.direction));
+    Brdf brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, ctx.options.diffuse_only);
+    Basis basis = basis_from_normal(s.ns);
+    vec3 wo = to_local(basis, -glm::normalize(ray.direction));
     if (wo.z <= 0.0f) break;  // grazing view under the shading normal: no reflection defined
 
     // Every vertex draws its samples in the same order (light, BRDF, roulette), so sample set
     // numbers line up across paths and the sets stay stratified per vertex.
-    vec2 u_light = sampler.get2d(), u_brdf = sampler.get2d();
-    float u_roulette = sampler.get1d();
-    target += beta * sample_direct(ctx, s, brdf, frame, wo, u_light, counters);
+    vec2 u_light = pixel_sampler_get2d(sampler), u_brdf = pixel_sampler_get2d(sampler);
+    float u_roulette = pixel_sampler_get1d(sampler);
+    target += beta * sample_direct(ctx, s, brdf, basis, wo, u_light, counters);
 
     BrdfSample bs;
-    if (!brdf.sample(wo, u_brdf, bs)) break;
-    vec3 wi = frame.to_world(bs.wi);
+    if (!brdf_sample(brdf, wo, u_brdf, bs)) break;
+    vec3 wi = to_world(basis, bs.wi);
     if (glm::dot(wi, s.ng) <= 0.0f) break;  // would pass through the surface
 
     ray.origin = ctx.accel.offset_point(s.p, s.ng);
@@ -110,8 +110,8 @@ FrameOutput PathTracer::render(const RenderContext& ctx, StageTimer& timer) {
       uint32_t pixel = uint32_t(y) * uint32_t(ctx.width) + uint32_t(x);
       PathSample sum;
       for (int i = 0; i < spp; ++i) {
-        PixelSampler sampler(ctx.options.seed, pixel, uint32_t(i));
-        vec2 jitter = sampler.get2d();
+        PixelSampler sampler = pixel_sampler(ctx.options.seed, pixel, uint32_t(i));
+        vec2 jitter = pixel_sampler_get2d(sampler);
         PathSample p = trace_path(ctx, params_, ctx.camera.generate(float(x) + jitter.x, float(y) + jitter.y), sampler, counters);
         ++counters.samples;
         // A NaN or Inf sample is a bug to find, not a pixel to show: drop and count it.

@@ -1,15 +1,21 @@
-// Warps from uniform random numbers to the distributions the renderers sample, with their pdfs.
-#pragma once
-#include "core/math/math.h"
+// Warps from uniform random numbers to the distributions the renderers sample, with their pdfs
+// (shared C++/GLSL source). sin and cos are core/math/accurate_math.h's, so that both backends
+// place the same directions.
+#ifndef SST_CORE_SAMPLING_SAMPLING_H
+#define SST_CORE_SAMPLING_SAMPLING_H
+#include "core/math/accurate_math.h"
+#include "core/math/vector_math.h"
 
-namespace sst {
+SST_BEGIN
 
-// Cosine-weighted direction about +z; pdf = cos(theta) / pi.
-inline vec3 sample_cosine_hemisphere(float u1, float u2) {
-  // Concentric mapping (Shirley & Chiu) keeps strata compact.
-  float a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-  if (a == 0.0f && b == 0.0f) return {0.0f, 0.0f, 1.0f};
-  float r, phi;
+// Cosine-weighted direction about +z; pdf = cos(theta) / pi. The concentric mapping (Shirley &
+// Chiu) keeps strata compact.
+SST_FUNC vec3 sample_cosine_hemisphere(float u1, float u2) {
+  SST_PRECISE float a = 2.0f * u1 - 1.0f;
+  SST_PRECISE float b = 2.0f * u2 - 1.0f;
+  if (a == 0.0f && b == 0.0f) return vec3(0.0f, 0.0f, 1.0f);
+  SST_PRECISE float r;
+  SST_PRECISE float phi;
   if (a * a > b * b) {
     r = a;
     phi = (kPi / 4.0f) * (b / a);
@@ -17,31 +23,42 @@ inline vec3 sample_cosine_hemisphere(float u1, float u2) {
     r = b;
     phi = (kPi / 2.0f) - (kPi / 4.0f) * (a / b);
   }
-  float x = r * std::cos(phi), y = r * std::sin(phi);
-  return {x, y, std::sqrt(std::max(0.0f, 1.0f - x * x - y * y))};
+  SST_PRECISE float x = r * accurate_cos(phi);
+  SST_PRECISE float y = r * accurate_sin(phi);
+  SST_PRECISE float z2 = 1.0f - x * x - y * y;
+  return vec3(x, y, sqrt(max(0.0f, z2)));
 }
-inline float cosine_hemisphere_pdf(float cos_theta) { return std::max(cos_theta, 0.0f) * kInvPi; }
 
-// Uniform direction on the unit sphere; pdf = 1 / (4 pi).
-inline vec3 sample_uniform_sphere(float u1, float u2) {
-  float z = 1.0f - 2.0f * u1;
-  float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  float phi = 2.0f * kPi * u2;
-  return {r * std::cos(phi), r * std::sin(phi), z};
+SST_FUNC float cosine_hemisphere_pdf(float cos_theta) { return max(cos_theta, 0.0f) * kInvPi; }
+
+// Uniform direction on the unit sphere; pdf = kUniformSpherePdf.
+SST_FUNC vec3 sample_uniform_sphere(float u1, float u2) {
+  SST_PRECISE float z = 1.0f - 2.0f * u1;
+  SST_PRECISE float r2 = 1.0f - z * z;
+  float r = sqrt(max(0.0f, r2));
+  SST_PRECISE float phi = 2.0f * kPi * u2;
+  SST_PRECISE vec3 d = vec3(r * accurate_cos(phi), r * accurate_sin(phi), z);
+  return d;
 }
-inline constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+// 1 / (4 pi) rounded to float.
+SST_CONSTANT float kUniformSpherePdf = 0.0795774715f;
 
 // Uniform point on a triangle as barycentrics (b0, b1); b2 = 1 - b0 - b1. Heitz's low-distortion
 // mapping would also do; the square-root warp is the classic, exact one.
-inline vec2 sample_uniform_triangle(float u1, float u2) {
-  float su = std::sqrt(u1);
-  return {1.0f - su, u2 * su};
+SST_FUNC vec2 sample_uniform_triangle(float u1, float u2) {
+  float su = sqrt(u1);
+  SST_PRECISE vec2 b = vec2(1.0f - su, u2 * su);
+  return b;
 }
 
 // Power heuristic with beta = 2 (Veach 1997).
-inline float power_heuristic(float pdf_a, float pdf_b) {
-  float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-  return a + b > 0.0f ? a / (a + b) : 0.0f;
+SST_FUNC float power_heuristic(float pdf_a, float pdf_b) {
+  SST_PRECISE float a = pdf_a * pdf_a;
+  SST_PRECISE float b = pdf_b * pdf_b;
+  SST_PRECISE float w = a / (a + b);
+  return a + b > 0.0f ? w : 0.0f;
 }
 
-}  // namespace sst
+SST_END
+
+#endif  // SST_CORE_SAMPLING_SAMPLING_H

@@ -14,13 +14,13 @@
 namespace sst {
 namespace {
 
-// Two draws as one 2D sample, the first draw in y. This was `vec2(rng.next(), rng.next())`, whose
+// Two draws as one 2D sample, the first draw in y. This was `vec2(hash_rng_next(rng), hash_rng_next(rng))`, whose
 // argument order C++ leaves to the compiler: GCC evaluated right to left. Spelled out so that every
 // compiler draws the VPL sets the results were made with; gpu/shaders/vpl_generation.comp draws
 // the same way (next_2d_as_cpu).
 vec2 next_2d(HashRng& rng) {
-  float y = rng.next();
-  float x = rng.next();
+  float y = hash_rng_next(rng);
+  float x = hash_rng_next(rng);
   return {x, y};
 }
 
@@ -53,8 +53,8 @@ struct Tracer {
   // Random numbers are drawn in a fixed order: pick, position (2), direction (2), then per hit
   // bounce direction (2) and roulette (1).
   void trace(uint32_t path, Chunk& out) const {
-    HashRng rng(seed, path, 0, kVplStream);
-    float u_pick = rng.next();
+    HashRng rng = hash_rng(seed, path, 0, kVplStream);
+    float u_pick = hash_rng_next(rng);
     vec2 u_pos = next_2d(rng);
     vec2 u_dir = next_2d(rng);
     EmissionSample e;
@@ -78,14 +78,14 @@ struct Tracer {
       if (hit_index + 1 >= params.vpl_max_bounces) return;
 
       vec2 u_bounce = next_2d(rng);
-      float u_roulette = rng.next();
+      float u_roulette = hash_rng_next(rng);
       if (hit_index + 1 >= params.vpl_min_bounces) {
         float survive = std::min(1.0f, max_component(albedo));
         if (u_roulette >= survive) return;
         beta /= survive;
       }
       // Cosine-weighted about the shading normal: f cos / pdf = albedo.
-      vec3 wi = Frame::from_normal(s.ns).to_world(sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
+      vec3 wi = to_world(basis_from_normal(s.ns), sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
       if (!(glm::dot(wi, s.ng) > 0.0f)) return;  // would pass through the surface
       beta *= albedo;
       ray.origin = accel.offset_point(s.p, s.ng);

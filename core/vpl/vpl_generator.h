@@ -10,7 +10,7 @@
 // | clamp_fraction   | 0.01    | singularity clamp c = clamp_fraction * D, D = VPL-bounds diagonal    |
 // | export_vpls      | ""      | write the VPL set to this PLY file after generation (empty: don't)   |
 //
-// Path count. Path i always uses HashRng(seed, i, 0, kVplStream), so a path is a pure function of
+// Path count. Path i always uses hash_rng(seed, i, 0, kVplStream), so a path is a pure function of
 // (seed, i). Paths 0, 1, 2, ... are traced until `vpls` VPLs exist; the last path's surplus VPLs
 // are dropped, so the set has exactly `vpls` VPLs (fewer only when the scene cannot produce
 // them: see kMaxPathsPerVpl). Every intensity is divided by P, the number of paths traced up to

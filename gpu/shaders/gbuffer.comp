@@ -17,7 +17,7 @@ layout(push_constant) uniform Push { FrameParams frame; };
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #include "gpu/shared/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
-#include "gpu/shaders/sobol_sampler.glsl"
+#include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/camera.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

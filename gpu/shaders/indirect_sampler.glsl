@@ -17,16 +17,16 @@
 //   #include "gpu/shaders/indirect_sampler.glsl"
 #ifndef SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL
 #define SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL
-#include "gpu/shaders/brdf.glsl"
-#include "gpu/shaders/math.glsl"
-#include "gpu/shaders/sobol_sampler.glsl"
+#include "core/material/brdf.h"
+#include "core/math/vector_math.h"
+#include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/vpl_shading.glsl"
 
 // A camera ray's first hit, ready to shade (sst::ShadingPoint).
 struct ShadingPoint {
   vec3 p;
   vec3 ng;      // geometric normal on the viewer's side
-  Frame frame;  // shading frame (frame.n = shading normal)
+  Basis basis;  // shading basis (basis.n = shading normal)
   vec3 wo;      // toward the viewer, in the shading frame
   Brdf brdf;
   int x;  // pixel
@@ -49,7 +49,7 @@ Vpl ml_vpl(uint j) {
 
 // shade_vpl(frame, point, vpl, &shadow_rays) of exhaustive_sampler.h.
 vec3 shade_vpl(ShadingPoint sp, Vpl vpl, inout uint shadow_rays) {
-  return shade_vpl(sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, vpl, ml_params.clamp_distance, shadow_rays);
+  return shade_vpl(sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, vpl, ml_params.clamp_distance, shadow_rays);
 }
 
 #include "gpu/shaders/indirect/exhaustive.glsl"

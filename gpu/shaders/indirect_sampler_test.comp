@@ -63,9 +63,9 @@ void main() {
   ShadingPoint sp;
   sp.p = q.p;
   sp.ng = q.ng;
-  sp.frame.t = q.t;
-  sp.frame.b = q.b;
-  sp.frame.n = q.n;
+  sp.basis.t = q.t;
+  sp.basis.b = q.b;
+  sp.basis.n = q.n;
   sp.wo = q.wo;
   sp.brdf.diffuse = q.diffuse;
   sp.brdf.f0 = q.f0;
@@ -74,13 +74,13 @@ void main() {
   sp.x = q.x;
   sp.y = q.y;
   PixelSampler ps = pixel_sampler(q.seed, q.pixel, q.sample_index);
-  ps.set_index = q.sets_used;  // get2d only counts sets: the CPU's draws so far
+  ps.sets_used = q.sets_used;  // get2d only counts sets: the CPU's draws so far
   IndirectEstimate e = estimate_indirect(sp, ps);
   IndirectTestResult r;
   r.value = e.value;
   r.nodes_visited = e.nodes_visited;
   r.shadow_rays = e.shadow_rays;
-  r.sets_used = ps.set_index;
+  r.sets_used = ps.sets_used;
   r.pad0 = 0u;
   r.pad1 = 0u;
   results[i] = r;

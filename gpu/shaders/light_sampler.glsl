@@ -16,16 +16,17 @@
 // as the CPU rounds its double: equal unless the exact value lies within 2^-48 of a rounding
 // boundary), the choice between solid-angle and area sampling, and every float of a punctual or
 // area-sampled light up to the GPU's sqrt and division (bit for bit on lavapipe). Spherical
-// (solid-angle) samples go through asin/atan2/sin/cos (gpu/shaders/accurate_math.glsl, within an
+// (solid-angle) samples go through asin/atan2/sin/cos (core/math/accurate_math.h, within an
 // ulp of glibc's): their pdf within ~1e-5 relative of the CPU's, their point as close as the
-// mapping's conditioning allows (gpu/shaders/spherical_triangle.glsl).
+// mapping's conditioning allows (core/sampling/spherical_triangle.h).
 #ifndef SST_GPU_SHADERS_LIGHT_SAMPLER_GLSL
 #define SST_GPU_SHADERS_LIGHT_SAMPLER_GLSL
-#include "gpu/shaders/accurate_math.glsl"
-#include "gpu/shaders/math.glsl"
-#include "gpu/shaders/sampling.glsl"
+#include "core/math/accurate_math.h"
+#include "core/math/vector_math.h"
+#include "core/rng/sobol_sampler.h"
+#include "core/sampling/sampling.h"
 #include "gpu/shaders/surface.glsl"
-#include "gpu/shaders/spherical_triangle.glsl"
+#include "core/sampling/spherical_triangle.h"
 
 // sst::LightSample.
 struct LightSample {
@@ -103,9 +104,9 @@ bool uses_solid_angle_sampling(vec3 p, vec3 v0, vec3 v1, vec3 v2) {
   const float one_third = uintBitsToFloat(0x3EAAAAABu);  // 1.0f / 3.0f
   precise vec3 c = (v0 + v1 + v2) * one_third - p;
   precise vec3 e1 = v1 - v0, e2 = v2 - v0;
-  vec3 n = glm_cross(e1, e2);  // twice the area times the unit normal
-  float d2 = glm_dot(c, c);
-  precise float estimate = 0.5 * abs(glm_dot(n, c)) / (d2 * sqrt(d2));
+  vec3 n = cross3(e1, e2);  // twice the area times the unit normal
+  float d2 = dot3(c, c);
+  precise float estimate = 0.5 * abs(dot3(n, c)) / (d2 * sqrt(d2));
   if (!(estimate >= 0.05)) return false;  // kSolidAngleSamplingThreshold
   float omega = triangle_solid_angle(p, v0, v1, v2);
   return omega >= kMinSphericalSolidAngle && omega <= kMaxSphericalSolidAngle;
@@ -113,7 +114,7 @@ bool uses_solid_angle_sampling(vec3 p, vec3 v0, vec3 v1, vec3 v2) {
 
 // glTF spot attenuation: smooth step between the outer and inner cone cosines, squared.
 float spot_attenuation(LightPunctual light, vec3 light_to_point_unit) {
-  float cd = glm_dot(light.direction, light_to_point_unit);
+  float cd = dot3(light.direction, light_to_point_unit);
   precise float cone = light.cos_inner - light.cos_outer;
   float scale = 1.0 / max(0.001, cone);
   precise float a = (cd - light.cos_outer) * scale;
@@ -136,7 +137,7 @@ bool light_sample_punctual(vec3 p, LightPunctual light, float pick, inout LightS
   s.point = light.position;
   s.normal = vec3(0.0);
   precise vec3 d = light.position - p;
-  float d2 = glm_dot(d, d);
+  float d2 = dot3(d, d);
   if (!(d2 > 0.0)) return false;
   s.distance = sqrt(d2);
   precise vec3 wi = d / s.distance;
@@ -159,13 +160,13 @@ bool light_sample_triangle(vec3 p, uint k, float pick, vec2 u, inout LightSample
   if (!spherical) b = sample_uniform_triangle(u.x, u.y);
   vec3 y = scene_interpolate3(v0, v1, v2, b);
   precise vec3 d = y - p;
-  float d2 = glm_dot(d, d);
+  float d2 = dot3(d, d);
   if (!(d2 > 0.0)) return false;
   s.distance = sqrt(d2);
   precise vec3 wi = d / s.distance;
   s.wi = wi;
   vec3 ng = triangle_geometric_normal(tri);
-  float cos_light = glm_dot(ng, -s.wi);
+  float cos_light = dot3(ng, -s.wi);
   if (cos_light == 0.0) return false;
   s.li = triangle_emission(tri, b, cos_light > 0.0);
   s.point = y;
@@ -211,8 +212,8 @@ float light_pdf_emissive_hit(vec3 p, uint tri, vec3 y, vec3 ng_light) {
     return omega > 0.0 ? r : 0.0;
   }
   precise vec3 d = y - p;
-  float d2 = glm_dot(d, d);
-  precise float cos_light = abs(glm_dot(ng_light, d)) / sqrt(d2);
+  float d2 = dot3(d, d);
+  precise float cos_light = abs(dot3(ng_light, d)) / sqrt(d2);
   if (!(cos_light > 0.0)) return 0.0;
   precise float r = pick / e.area * d2 / cos_light;
   return r;
@@ -236,7 +237,7 @@ bool light_emit_point_or_spot(LightPunctual light, vec2 u_dir, inout EmissionSam
   float sin_t = sqrt(max(0.0, sin_t2));
   precise float phi = 2.0 * kPi * u_dir.y;
   precise vec3 local = vec3(sin_t * accurate_cos(phi), sin_t * accurate_sin(phi), cos_t);
-  e.direction = glm_normalize(frame_to_world(frame_from_normal(light.direction), local));
+  e.direction = normalize3(to_world(basis_from_normal(light.direction), local));
   // I att(w) / pdf, pdf = 1 / (2 pi (1 - cos_outer)): uniform over the cone's solid angle.
   precise float scale = spot_attenuation(light, e.direction) * 2.0 * kPi * one_minus_cos;
   precise vec3 w = light.intensity * scale;
@@ -249,11 +250,11 @@ bool light_emit_point_or_spot(LightPunctual light, vec2 u_dir, inout EmissionSam
 bool light_emit_directional(LightPunctual light, vec2 u_pos, inout EmissionSample e) {
   float r = light_header.bounds_radius;
   if (!(r > 0.0) || !is_finite(r)) return false;
-  Frame frame = frame_from_normal(light.direction);
+  Basis basis = basis_from_normal(light.direction);
   precise float rho = r * sqrt(u_pos.x);
   precise float phi = 2.0 * kPi * u_pos.y;
-  precise vec3 pos = light_header.bounds_center - light.direction * (1.01 * r) + frame.t * (rho * accurate_cos(phi)) +
-                     frame.b * (rho * accurate_sin(phi));
+  precise vec3 pos = light_header.bounds_center - light.direction * (1.01 * r) + basis.t * (rho * accurate_cos(phi)) +
+                     basis.b * (rho * accurate_sin(phi));
   e.position = pos;
   e.direction = light.direction;
   precise vec3 w = light.intensity * (kPi * r * r);
@@ -281,7 +282,7 @@ bool light_emit_triangle(uint k, vec2 u_pos, vec2 u_dir, inout EmissionSample e)
   e.normal = front ? ng : -ng;
   vec3 local = sample_cosine_hemisphere(u_side, u_dir.y);
   if (!(local.z > 0.0)) return false;  // grazing: zero pdf and zero cosine
-  e.direction = glm_normalize(frame_to_world(frame_from_normal(e.normal), local));
+  e.direction = normalize3(to_world(basis_from_normal(e.normal), local));
   float sides = double_sided ? 2.0 : 1.0;
   precise float scale = kPi * em.area * sides;
   precise vec3 w = triangle_emission(tri, b, front) * scale;

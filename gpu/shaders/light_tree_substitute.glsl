@@ -6,7 +6,7 @@
 #ifndef SST_GPU_SHADERS_LIGHT_TREE_SUBSTITUTE_GLSL
 #define SST_GPU_SHADERS_LIGHT_TREE_SUBSTITUTE_GLSL
 
-#include "gpu/shaders/math.glsl"
+#include "core/math/vector_math.h"
 
 struct SubstituteThresholds {
   float v_min;
@@ -35,7 +35,7 @@ LightNode make_leaf(vec3 position, vec3 normal, vec3 intensity, uint vpl_index, 
   leaf.vpl_count = 1u;
   leaf.mean = position;
   leaf.similarity = 1.0;
-  precise float inv_length = 1.0 / sqrt(glm_dot(normal, normal));
+  precise float inv_length = 1.0 / sqrt(dot3(normal, normal));
   precise vec3 unit = normal * inv_length;
   leaf.normal = unit;
   leaf.sigma_z = 0.0;
@@ -72,7 +72,7 @@ void merge_substitutes(inout LightNode parent, LightNode a, LightNode b) {
   precise vec3 mean = a.mean + t * delta;
   parent.mean = mean;
   precise vec3 normal_sum = (1.0 - t) * a.normal + t * b.normal;
-  float len = sqrt(glm_dot(normal_sum, normal_sum));
+  float len = sqrt(dot3(normal_sum, normal_sum));
   if (len > 1e-4) {
     precise float inv = 1.0 / len;
     precise vec3 n = normal_sum * inv;
@@ -80,7 +80,7 @@ void merge_substitutes(inout LightNode parent, LightNode a, LightNode b) {
   } else {
     parent.normal = c2 > c1 ? b.normal : a.normal;
   }
-  vec3 local = frame_to_local(frame_from_normal(parent.normal), delta);
+  vec3 local = to_local(basis_from_normal(parent.normal), delta);
   precise float spread = weighted ? t * (1.0 - t) : 0.0;
   if (weighted) {
     precise vec3 variance = (1.0 - t) * a.variance + t * b.variance + spread * (local * local);
@@ -88,7 +88,7 @@ void merge_substitutes(inout LightNode parent, LightNode a, LightNode b) {
   } else {
     parent.variance = vec3(0.0);
   }
-  float cosine = glm_dot(a.normal, b.normal);
+  float cosine = dot3(a.normal, b.normal);
   precise float similarity = a.similarity * b.similarity * (cosine < 0.0 ? 0.0 : cosine);
   parent.similarity = similarity;
   parent.sigma_z = sqrt(parent.variance.z);

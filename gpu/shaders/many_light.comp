@@ -31,7 +31,7 @@ layout(push_constant) uniform Push {
 #define SCENE_RAY_EPSILON scene_epsilon
 #include "gpu/shared/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
-#include "gpu/shaders/sobol_sampler.glsl"
+#include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/camera.glsl"
 #include "gpu/shaders/path_trace.glsl"
 #include "gpu/shaders/indirect_sampler.glsl"
@@ -43,8 +43,8 @@ ShadingPoint shading_point(Surface s, vec3 dir, uvec2 xy) {
   ShadingPoint sp;
   sp.p = s.p;
   sp.ng = s.ng;
-  sp.frame = frame_from_normal(s.ns);
-  sp.wo = frame_to_local(sp.frame, -glm_normalize(dir));
+  sp.basis = basis_from_normal(s.ns);
+  sp.wo = to_local(sp.basis, -normalize3(dir));
   sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only != 0u);
   sp.x = int(xy.x);
   sp.y = int(xy.y);

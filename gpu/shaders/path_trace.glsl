@@ -14,11 +14,11 @@
 // depth) counts as a miss for a path ray and as occluded for a shadow ray.
 #ifndef SST_GPU_SHADERS_PATH_TRACE_GLSL
 #define SST_GPU_SHADERS_PATH_TRACE_GLSL
-#include "gpu/shaders/math.glsl"
-#include "gpu/shaders/brdf.glsl"
+#include "core/math/vector_math.h"
+#include "core/material/brdf.h"
 #include "gpu/shaders/light_sampler.glsl"
 #include "gpu/shaders/ray_offset.glsl"
-#include "gpu/shaders/sobol_sampler.glsl"
+#include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/surface.glsl"
 
 // sst::PathSample: one camera path's contribution, split the way the EXR layers are.
@@ -49,12 +49,12 @@ bool path_intersect(vec3 origin, vec3 dir, out BvhHit hit) {
 }
 
 // Next-event estimation at surface s: one light sample, one shadow ray, MIS-weighted.
-vec3 sample_direct(Surface s, Brdf brdf, Frame frame, vec3 wo, vec2 u, inout PathCounters counters) {
+vec3 sample_direct(Surface s, Brdf brdf, Basis basis, vec3 wo, vec2 u, inout PathCounters counters) {
   LightSample ls;
   if (!light_sample(s.p, u, ls)) return vec3(0.0);
   // Light from behind the geometric surface would leak through it: nothing is transmitted.
-  if (glm_dot(ls.wi, s.ng) <= 0.0) return vec3(0.0);
-  vec3 wi = frame_to_local(frame, ls.wi);
+  if (dot3(ls.wi, s.ng) <= 0.0) return vec3(0.0);
+  vec3 wi = to_local(basis, ls.wi);
   vec3 f = brdf_eval(brdf, wo, wi);
   if (wi.z <= 0.0 || max_component(f) <= 0.0 || max_component(ls.li) <= 0.0) return vec3(0.0);
   vec3 origin, dir;
@@ -114,7 +114,7 @@ PathSample trace_path(vec3 origin, vec3 dir, int max_bounces, int rr_min_bounces
   hit = true;
   result.albedo = s.base_color;
   result.normal = s.ns;
-  precise float depth = h.t * glm_length(dir);
+  precise float depth = h.t * length3(dir);
   result.depth = depth;
   result.direct = s.emission;
 
@@ -123,21 +123,21 @@ PathSample trace_path(vec3 origin, vec3 dir, int max_bounces, int rr_min_bounces
   // vertices 1 .. max_bounces+1 gather light, and vertex 1's share is the direct layer.
   for (int k = 1; k <= max_bounces + 1; ++k) {
     Brdf brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
-    Frame frame = frame_from_normal(s.ns);
-    vec3 wo = frame_to_local(frame, -glm_normalize(dir));
+    Basis basis = basis_from_normal(s.ns);
+    vec3 wo = to_local(basis, -normalize3(dir));
     if (wo.z <= 0.0) break;  // grazing view under the shading normal: no reflection defined
 
     // Every vertex draws its samples in the same order (light, BRDF, roulette), as on the CPU.
     vec2 u_light = pixel_sampler_get2d(ps), u_brdf = pixel_sampler_get2d(ps);
     float u_roulette = pixel_sampler_get1d(ps);
-    precise vec3 direct = beta * sample_direct(s, brdf, frame, wo, u_light, counters);
+    precise vec3 direct = beta * sample_direct(s, brdf, basis, wo, u_light, counters);
     if (k == 1) result.direct += direct;
     else result.indirect += direct;
 
     BrdfSample bs;
     if (!brdf_sample(brdf, wo, u_brdf, bs)) break;
-    vec3 wi = frame_to_world(frame, bs.wi);
-    if (glm_dot(wi, s.ng) <= 0.0) break;  // would pass through the surface
+    vec3 wi = to_world(basis, bs.wi);
+    if (dot3(wi, s.ng) <= 0.0) break;  // would pass through the surface
 
     origin = offset_point(s.p, s.ng);
     dir = wi;

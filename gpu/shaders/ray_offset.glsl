@@ -4,7 +4,7 @@
 // scene_ray_epsilon() in core/accel/embree_accel.h) before including this file.
 #ifndef SST_GPU_SHADERS_RAY_OFFSET_GLSL
 #define SST_GPU_SHADERS_RAY_OFFSET_GLSL
-#include "gpu/shaders/math.glsl"
+#include "core/math/vector_math.h"
 
 #ifndef SCENE_RAY_EPSILON
 #error "define SCENE_RAY_EPSILON before including gpu/shaders/ray_offset.glsl"
@@ -25,7 +25,7 @@ vec3 offset_point(vec3 p, vec3 ng_toward) {
 void shadow_ray(vec3 p, vec3 ng_p, vec3 y, vec3 ng_y, out vec3 origin, out vec3 dir, out float tmax) {
   origin = offset_point(p, ng_p);
   precise vec3 py = p - y;
-  vec3 target = glm_dot(ng_y, py) < 0.0 ? offset_point(y, -ng_y) : offset_point(y, ng_y);
+  vec3 target = dot3(ng_y, py) < 0.0 ? offset_point(y, -ng_y) : offset_point(y, ng_y);
   precise vec3 d = target - origin;
   dir = d;
   tmax = 1.0 - 1e-4;

@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Writes the RNGs' outputs for indices 0..count-1 so a test can compare them with the C++ bits.
-#include "gpu/shaders/sobol_sampler.glsl"
+#include "core/rng/sobol_sampler.h"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 0) writeonly buffer Out { uint values[]; };

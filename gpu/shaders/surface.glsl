@@ -23,7 +23,7 @@
 // correctly rounded (a few ulps in normalised normals, never in positions, uvs or texels).
 #ifndef SST_GPU_SHADERS_SURFACE_GLSL
 #define SST_GPU_SHADERS_SURFACE_GLSL
-#include "gpu/shaders/math.glsl"
+#include "core/math/vector_math.h"
 
 // sst::Surface. `incoming` of make_surface is the direction of the ray that hit the surface.
 struct Surface {
@@ -145,8 +145,8 @@ vec3 triangle_geometric_normal(uint tri) {
   vec3 p0 = scene_vertices[t.v0].position;
   precise vec3 e1 = scene_vertices[t.v1].position - p0;
   precise vec3 e2 = scene_vertices[t.v2].position - p0;
-  vec3 n = glm_cross(e1, e2);
-  float len = glm_length(n);
+  vec3 n = cross3(e1, e2);
+  float len = length3(n);
   return len > 0.0 ? n / len : vec3(0.0, 0.0, 1.0);
 }
 
@@ -155,7 +155,7 @@ float triangle_area(uint tri) {
   vec3 p0 = scene_vertices[t.v0].position;
   precise vec3 e1 = scene_vertices[t.v1].position - p0;
   precise vec3 e2 = scene_vertices[t.v2].position - p0;
-  precise float a = 0.5 * glm_length(glm_cross(e1, e2));
+  precise float a = 0.5 * length3(cross3(e1, e2));
   return a;
 }
 
@@ -180,14 +180,14 @@ Surface make_surface(uint tri, vec2 b, vec3 incoming) {
   s.triangle = tri;
   s.material = t.material;
   s.ng = triangle_geometric_normal(tri);
-  s.front_face = glm_dot(s.ng, incoming) < 0.0;
+  s.front_face = dot3(s.ng, incoming) < 0.0;
   if (!s.front_face) s.ng = -s.ng;
   vec3 ns = scene_interpolate3(v0.normal, v1.normal, v2.normal, b);
-  float len = glm_length(ns);
+  float len = length3(ns);
   ns = len > 0.0 && is_finite(len) ? ns / len : s.ng;
   // Shading normals are interpolated per vertex and may point away from the viewer's side;
   // keep them in the hemisphere of the geometric normal so shading never sees a back face.
-  if (glm_dot(ns, s.ng) < 0.0) ns = -ns;
+  if (dot3(ns, s.ng) < 0.0) ns = -ns;
   s.ns = ns;
   s.uv = scene_interpolate2(vec2(v0.u, v0.v), vec2(v1.u, v1.v), vec2(v2.u, v2.v), b);
 

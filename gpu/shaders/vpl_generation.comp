@@ -48,9 +48,9 @@ layout(push_constant) uniform Push {
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
 #include "gpu/shared/bvh_traverse.h"
-#include "gpu/shaders/hash_rng.glsl"
-#include "gpu/shaders/math.glsl"
-#include "gpu/shaders/sampling.glsl"
+#include "core/rng/hash_rng.h"
+#include "core/math/vector_math.h"
+#include "core/sampling/sampling.h"
 #include "gpu/shaders/ray_offset.glsl"
 #include "gpu/shaders/surface.glsl"
 #include "gpu/shaders/light_sampler.glsl"
@@ -94,7 +94,7 @@ uvec2 trace(uint path, uint base) {
     Surface s = make_surface(hit.triangle, vec2(hit.u, hit.v), dir);
     vec3 albedo = diffuse_albedo(s);
     // Light arriving under the shading hemisphere is not reflected: the path tracer's rule.
-    if (!(glm_dot(dir, s.ns) < 0.0) || !(max_component(albedo) > 0.0)) break;
+    if (!(dot3(dir, s.ns) < 0.0) || !(max_component(albedo) > 0.0)) break;
     precise vec3 intensity = beta * albedo * kInvPi;
     if (!is_finite3(intensity)) break;
     VplSlot slot;
@@ -117,8 +117,8 @@ uvec2 trace(uint path, uint base) {
       beta = b;
     }
     // Cosine-weighted about the shading normal: f cos / pdf = albedo.
-    vec3 wi = frame_to_world(frame_from_normal(s.ns), sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
-    if (!(glm_dot(wi, s.ng) > 0.0)) break;  // would pass through the surface
+    vec3 wi = to_world(basis_from_normal(s.ns), sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
+    if (!(dot3(wi, s.ng) > 0.0)) break;  // would pass through the surface
     precise vec3 b = beta * albedo;
     beta = b;
     origin = offset_point(s.p, s.ng);

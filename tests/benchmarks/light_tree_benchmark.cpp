@@ -29,8 +29,8 @@ using sst::vec3;
 sst::VplSet make_vpls(size_t n, bool room) {
   sst::VplSet vpls(n);
   for (size_t i = 0; i < n; ++i) {
-    sst::HashRng rng(7, uint32_t(i), 0);
-    vec3 p(rng.next(), rng.next(), rng.next());
+    sst::HashRng rng = sst::hash_rng(7, uint32_t(i), 0);
+    vec3 p(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng));
     vec3 normal;
     if (room) {
       int face = int(i % 6), axis = face / 2;
@@ -38,11 +38,11 @@ sst::VplSet make_vpls(size_t n, bool room) {
       normal = vec3(0.0f);
       normal[axis] = face % 2 ? -1.0f : 1.0f;
     } else {
-      float z = 2.0f * rng.next() - 1.0f, phi = 2.0f * sst::kPi * rng.next();
+      float z = 2.0f * hash_rng_next(rng) - 1.0f, phi = 2.0f * sst::kPi * hash_rng_next(rng);
       float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
       normal = vec3(r * std::cos(phi), r * std::sin(phi), z);
     }
-    vpls[i] = {10.0f * p, normal, vec3(rng.next(), rng.next(), rng.next())};
+    vpls[i] = {10.0f * p, normal, vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng))};
   }
   return vpls;
 }

@@ -27,9 +27,9 @@ std::vector<glsl::BvhRay> random_rays(const Scene& scene, uint32_t count) {
   Bounds3 b = scene.bounds;
   std::vector<glsl::BvhRay> rays(count);
   for (uint32_t i = 0; i < count; ++i) {
-    HashRng rng(7, i, 0);
-    vec3 o = b.lo + (b.hi - b.lo) * vec3(rng.next(), rng.next(), rng.next());
-    float z = 1.0f - 2.0f * rng.next(), phi = 6.2831853f * rng.next(), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    HashRng rng = hash_rng(7, i, 0);
+    vec3 o = b.lo + (b.hi - b.lo) * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng));
+    float z = 1.0f - 2.0f * hash_rng_next(rng), phi = 6.2831853f * hash_rng_next(rng), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
     vec3 d(r * std::cos(phi), r * std::sin(phi), z);
     rays[i] = {o, 0.0f, d, i % 3 == 0 ? 0.1f * b.diagonal() : kInf};
   }

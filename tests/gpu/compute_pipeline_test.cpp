@@ -34,10 +34,10 @@ TEST(ComputePipeline, GlslRngsDrawTheSameBitsAsTheCpp) {
   std::vector<uint32_t> gpu(count * 8);
   out.download(std::span<uint32_t>(gpu));
   for (uint32_t i = 0; i < count; ++i) {
-    HashRng rng(seed, i, 7, 3);
-    PixelSampler ps(seed, i, i * 3);
-    vec2 a = ps.get2d(), b = ps.get2d();
-    uint32_t expected[8] = {pcg_hash(i), rng.next_bits(), bits(rng.next()), bits(a.x),
+    HashRng rng = hash_rng(seed, i, 7, 3);
+    PixelSampler ps = pixel_sampler(seed, i, i * 3);
+    vec2 a = pixel_sampler_get2d(ps), b = pixel_sampler_get2d(ps);
+    uint32_t expected[8] = {pcg_hash(i), hash_rng_next_bits(rng), bits(hash_rng_next(rng)), bits(a.x),
                             bits(a.y),   bits(b.x),       bits(b.y),        sobol_dimension1(i)};
     for (int k = 0; k < 8; ++k) ASSERT_EQ(gpu[i * 8 + k], expected[k]) << "index " << i << " value " << k;
   }

@@ -122,8 +122,8 @@ struct TestFrame {
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x) {
         uint32_t pixel = uint32_t(y) * uint32_t(kWidth) + uint32_t(x);
-        PixelSampler sampler(kSeed, pixel, 0);
-        vec2 jitter = sampler.get2d();
+        PixelSampler sampler = pixel_sampler(kSeed, pixel, 0);
+        vec2 jitter = pixel_sampler_get2d(sampler);
         Ray ray = camera->generate(float(x) + jitter.x, float(y) + jitter.y);
         Surface hit;
         PathSample d = trace_path(*context, direct_only, ray, sampler, rc, &hit);
@@ -157,9 +157,9 @@ std::vector<IndirectTestPoint> pack_points(const TestFrame& f) {
     q = {};
     q.p = s.p;
     q.ng = s.ng;
-    q.t = s.frame.t;
-    q.b = s.frame.b;
-    q.n = s.frame.n;
+    q.t = s.basis.t;
+    q.b = s.basis.b;
+    q.n = s.basis.n;
     q.wo = s.wo;
     q.diffuse = s.brdf.diffuse;
     q.f0 = s.brdf.f0;
@@ -170,7 +170,7 @@ std::vector<IndirectTestPoint> pack_points(const TestFrame& f) {
     q.seed = kSeed;
     q.pixel = f.pixels[i];
     q.sample_index = 0;
-    q.sets_used = f.samplers[i].sets_used();
+    q.sets_used = f.samplers[i].sets_used;
   }
   return out;
 }
@@ -294,7 +294,7 @@ Agreement compare_with_cpu(const TestFrame& f, const IndirectSampler& sampler, c
     PixelSampler s = f.samplers[i];
     IndirectEstimate e = sampler.estimate(mlf, f.points[i], s);
     const IndirectTestResult& g = gpu[i];
-    a.sets_differ += g.sets_used != s.sets_used();
+    a.sets_differ += g.sets_used != s.sets_used;
     a.nodes_differ += g.nodes_visited != e.nodes_visited;
     a.rays_differ += g.shadow_rays != e.shadow_rays;
     a.nodes_per_point += e.nodes_visited;

@@ -2,7 +2,7 @@
 // against core/lights/light_sampler.cpp on the same points and random numbers: the same light is
 // picked and the same remapped number drawn, bit for bit; punctual and area-sampled lights give
 // the CPU's floats to a few ulps (measured on lavapipe: 0); solid-angle samples, which go through
-// asin/atan2/sin/cos (gpu/shaders/accurate_math.glsl, within an ulp of glibc's), their pdf and
+// asin/atan2/sin/cos (core/math/accurate_math.h, within an ulp of glibc's), their pdf and
 // radiance to 1e-4 relative (measured: 1e-5) and their point no further from the exact one than
 // a few times the CPU's own float error. Also pack_lights' tables.
 #include <gtest/gtest.h>

@@ -8,7 +8,7 @@
 //
 // Where they do not: the CPU traces with Embree, the GPU with the flat BVH, and the surface points
 // they report differ in the last bits (Embree's barycentrics are not the flat BVH's); the GPU's
-// sin/cos also differ from glibc's by an ulp (gpu/shaders/sampling.glsl, brdf.glsl). A path that
+// sin/cos also differ from glibc's by an ulp (core/sampling/sampling.h, core/material/brdf.h). A path that
 // grazes an edge after such a difference takes another course, and on the real scenes, with their
 // hundreds of thousands of small triangles (and the breakfast room's coplanar, z-fighting floor),
 // measured on lavapipe: 0.3% (staircase) / 0.9% (breakfast room) of the camera paths with one

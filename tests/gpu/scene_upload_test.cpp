@@ -297,15 +297,15 @@ std::vector<Query> traced_queries(const Scene& scene, uint32_t wanted) {
     return std::pair{u, glm::cross(forward, u)};
   }();
   for (uint32_t i = 0; queries.size() < wanted && i < 20 * wanted; ++i) {
-    HashRng rng(2024u, i, 0u);
+    HashRng rng = hash_rng(2024u, i, 0u);
     Ray ray;
     if (i % 2 == 0) {
       ray.origin = eye;
-      float x = 2.0f * rng.next() - 1.0f, y = 2.0f * rng.next() - 1.0f;
+      float x = 2.0f * hash_rng_next(rng) - 1.0f, y = 2.0f * hash_rng_next(rng) - 1.0f;
       ray.direction = glm::normalize(forward + 0.7f * x * t1 + 0.7f * y * t2);
     } else {
-      ray.origin = lo + vec3(rng.next(), rng.next(), rng.next()) * (hi - lo);
-      ray.direction = sample_uniform_sphere(rng.next(), rng.next());
+      ray.origin = lo + vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) * (hi - lo);
+      ray.direction = sample_uniform_sphere(hash_rng_next(rng), hash_rng_next(rng));
     }
     Hit hit = accel.intersect(ray);
     if (hit.valid()) queries.push_back({hit.triangle, hit.barycentric, ray.direction});
@@ -406,11 +406,11 @@ TEST(GpuScene, EveryTextureModeMatchesTheCpu) {
   scene.finalize_bounds();
   std::vector<Query> queries;
   for (uint32_t i = 0; i < 6000; ++i) {
-    HashRng rng(77u, i, 0u);
-    float b1 = rng.next(), b2 = rng.next();
+    HashRng rng = hash_rng(77u, i, 0u);
+    float b1 = hash_rng_next(rng), b2 = hash_rng_next(rng);
     if (i % 7 != 0 && b1 + b2 > 1.0f) b1 = 1.0f - b1, b2 = 1.0f - b2;
-    if (i % 11 == 0) b1 = -1e-3f * rng.next();
-    queries.push_back({i % 12, vec2(b1, b2), sample_uniform_sphere(rng.next(), rng.next())});
+    if (i % 11 == 0) b1 = -1e-3f * hash_rng_next(rng);
+    queries.push_back({i % 12, vec2(b1, b2), sample_uniform_sphere(hash_rng_next(rng), hash_rng_next(rng))});
   }
   Differences d = compare_surfaces(scene, queries);
   EXPECT_EQ(d.exact_texture_values, d.texture_values) << "texture lookups are not bit-identical";

@@ -7,7 +7,7 @@
 // Float throughout, as on the CPU.
 #ifndef SST_GPU_SHADERS_INDIRECT_HYBRID_GLSL
 #define SST_GPU_SHADERS_INDIRECT_HYBRID_GLSL
-#include "gpu/shaders/box_bounds.glsl"
+#include "core/lighttree/box_bounds.h"
 
 // hybrid_weight: lum(I) G_avg / max(d^2, c^2), G_avg the mean over the box corners of
 // max(n . normalize(corner - x), 0).
@@ -19,8 +19,8 @@ float hybrid_weight(LightNode node, vec3 x, vec3 n, float clamp_distance) {
                        (c & 2) != 0 ? node.bounds_hi.y : node.bounds_lo.y,
                        (c & 4) != 0 ? node.bounds_hi.z : node.bounds_lo.z);
     precise vec3 d = corner - x;
-    float len = glm_length(d);
-    precise float cosine = glm_dot(n, d) / len;
+    float len = length3(d);
+    precise float cosine = dot3(n, d) / len;
     if (len > 0.0) g += max(cosine, 0.0);
   }
   precise float c2 = clamp_distance * clamp_distance;
@@ -44,7 +44,7 @@ Vpl hybrid_sample_substitute(LightNode node, inout PixelSampler ps) {
   vec2 b = hybrid_normal_pair(ps);
   vec3 sd = sqrt(max(node.variance, vec3(0.0)));
   precise vec3 scaled = vec3(a.x, a.y, b.x) * sd;
-  vec3 offset = frame_to_world(frame_from_normal(node.normal), scaled);
+  vec3 offset = to_world(basis_from_normal(node.normal), scaled);
   precise vec3 p = node.mean + offset;
   return Vpl(clamp(p, node.bounds_lo, node.bounds_hi), node.normal, node.intensity);
 }
@@ -68,8 +68,8 @@ void hybrid_traverse(ShadingPoint sp, uint from, inout PixelSampler ps, inout In
       e.value += c / prob;
       return;
     }
-    float w0 = hybrid_weight(ml_nodes[node.left], sp.p, sp.frame.n, ml_params.clamp_distance);
-    float w1 = hybrid_weight(ml_nodes[node.right], sp.p, sp.frame.n, ml_params.clamp_distance);
+    float w0 = hybrid_weight(ml_nodes[node.left], sp.p, sp.basis.n, ml_params.clamp_distance);
+    float w1 = hybrid_weight(ml_nodes[node.right], sp.p, sp.basis.n, ml_params.clamp_distance);
     precise float w = w0 + w1;
     if (!(w > 0.0)) return;  // neither child is expected to contribute: no backtracking
     float p0 = w0 / w;
@@ -96,8 +96,8 @@ IndirectEstimate estimate_hybrid(ShadingPoint sp, inout PixelSampler ps) {
     blocks[c] = uint(cy) * ml_params.cut_blocks_x + uint(cx);
     CutGuide g = ml_cut_guides[blocks[c]];
     precise vec3 to_guide = sp.p - g.p;
-    bool similar = g.valid != 0u && glm_dot(g.n, sp.frame.n) > ml_params.hybrid_n_min &&
-                   glm_length(to_guide) < ml_params.hybrid_d_max_abs;
+    bool similar = g.valid != 0u && dot3(g.n, sp.basis.n) > ml_params.hybrid_n_min &&
+                   length3(to_guide) < ml_params.hybrid_d_max_abs;
     precise float wx = (c & 1) != 0 ? tx : 1.0 - tx, wy = (c >> 1) != 0 ? ty : 1.0 - ty;
     precise float bilinear = wx * wy;
     p[c] = similar ? bilinear : 0.0;

@@ -6,7 +6,7 @@
 // (slc_child_weights) before rounding P_0 to float; here they are float.
 #ifndef SST_GPU_SHADERS_INDIRECT_RTSLC_GLSL
 #define SST_GPU_SHADERS_INDIRECT_RTSLC_GLSL
-#include "gpu/shaders/box_bounds.glsl"
+#include "core/lighttree/box_bounds.h"
 #include "gpu/shaders/indirect/slc.glsl"
 
 float rtslc_importance(LightNode c, vec3 x, vec3 n) {
@@ -96,7 +96,7 @@ IndirectEstimate estimate_rtslc(ShadingPoint sp, inout PixelSampler ps) {
   uint block = (y / ml_params.cut_block_size) * ml_params.cut_blocks_x + x / ml_params.cut_block_size;
   uint first = block * ml_params.cut_max_size, size = ml_cut_sizes[block];
   for (uint i = slot; i < size; i += slots) {
-    RtslcSample s = rtslc_traverse(ml_cut_nodes[first + i], sp.p, sp.frame.n, ps);
+    RtslcSample s = rtslc_traverse(ml_cut_nodes[first + i], sp.p, sp.basis.n, ps);
     e.nodes_visited += s.nodes_visited;
     if (s.node == ML_NO_NODE) continue;
     vec3 c = shade_vpl(sp, ml_vpl(ml_nodes[s.node].left), e.shadow_rays);

@@ -6,7 +6,7 @@
 // The weights are float here, double on the CPU (see tree_walk.glsl).
 #ifndef SST_GPU_SHADERS_INDIRECT_SLC_GLSL
 #define SST_GPU_SHADERS_INDIRECT_SLC_GLSL
-#include "gpu/shaders/box_bounds.glsl"
+#include "core/lighttree/box_bounds.h"
 #include "gpu/shaders/indirect/tree_walk.glsl"
 
 bool node_empty(LightNode node) { return node.vpl_count == 0u; }

@@ -1,5 +1,5 @@
 // The GLSL twin of core/manylight/sst_sampler.cpp: `sst`, stochastic substitute trees (Tatzgern
-// et al. 2020, §4). Per sample: pick a lobe (glossy with Brdf::specular_probability), walk the
+// et al. 2020, §4). Per sample: pick a lobe (glossy with brdf_specular_probability), walk the
 // tree with w = M * G * I (M: the lobe's BRDF bound times the cosine bound over the box;
 // G = 1 / max(d^2, eps^2); I = lum(intensity)), stop at a leaf or, for the diffuse lobe with
 // substitutes, at the first suitable node, whose Gaussian gives a point light; shade it divided
@@ -7,7 +7,7 @@
 // The weights are float here, double on the CPU (see tree_walk.glsl).
 #ifndef SST_GPU_SHADERS_INDIRECT_SST_GLSL
 #define SST_GPU_SHADERS_INDIRECT_SST_GLSL
-#include "gpu/shaders/box_bounds.glsl"
+#include "core/lighttree/box_bounds.h"
 #include "gpu/shaders/indirect/tree_walk.glsl"
 
 const float kSstTwoPi = 6.28318530717958647692;
@@ -33,25 +33,25 @@ bool sst_ray_hits_box(vec3 x, vec3 r, vec3 lo, vec3 hi) {
 vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 lo, vec3 hi) {
   if (sst_ray_hits_box(x, r, lo, hi)) return r;
   precise vec3 to_center = box_center(lo, hi) - x;
-  float t = max(0.0, glm_dot(to_center, r));
+  float t = max(0.0, dot3(to_center, r));
   precise vec3 q = x + t * r;
   precise vec3 d = clamp(q, lo, hi) - x;
-  float len = glm_length(d);
+  float len = length3(d);
   precise vec3 dn = d / len;
   return len > 0.0 ? dn : r;
 }
 
 // The lobe's BRDF bound times the cosine bound over the node's box (sp.brdf: the lobe's part).
 float sst_material_bound(LightNode node, ShadingPoint sp, bool glossy) {
-  float cos_bound = box_cos_bound(node.bounds_lo, node.bounds_hi, sp.p, sp.frame.n);
+  float cos_bound = box_cos_bound(node.bounds_lo, node.bounds_hi, sp.p, sp.basis.n);
   if (!(cos_bound > 0.0)) return 0.0;
   if (!glossy) {
     precise float m = luminance(sp.brdf.diffuse) * kInvPi * cos_bound;
     return m;
   }
-  vec3 wo_world = frame_to_world(sp.frame, sp.wo);
-  precise vec3 mirror = 2.0 * glm_dot(sp.frame.n, wo_world) * sp.frame.n - wo_world;
-  vec3 wi = frame_to_local(sp.frame, sst_glossy_direction(sp.p, mirror, node.bounds_lo, node.bounds_hi));
+  vec3 wo_world = to_world(sp.basis, sp.wo);
+  precise vec3 mirror = 2.0 * dot3(sp.basis.n, wo_world) * sp.basis.n - wo_world;
+  vec3 wi = to_local(sp.basis, sst_glossy_direction(sp.p, mirror, node.bounds_lo, node.bounds_hi));
   float f = luminance(brdf_eval(sp.brdf, sp.wo, wi));
   // The floor keeps every box above the surface reachable.
   precise float floor_value = 1e-3 * max(luminance(sp.brdf.f0), 1e-6);
@@ -98,7 +98,7 @@ vec3 sst_standard_normals(vec2 a, vec2 b) {
 vec3 sst_substitute_position(LightNode node, vec3 normals) {
   vec3 sd = vec3(sqrt(max(node.variance.x, 0.0)), sqrt(max(node.variance.y, 0.0)), max(node.sigma_z, 0.0));
   precise vec3 scaled = sd * normals;
-  vec3 offset = frame_to_world(frame_from_normal(node.normal), scaled);
+  vec3 offset = to_world(basis_from_normal(node.normal), scaled);
   precise vec3 p = node.mean + (is_finite3(offset) ? offset : vec3(0.0));
   return clamp(p, node.bounds_lo, node.bounds_hi);
 }

@@ -65,7 +65,7 @@ struct TreeTraversal {
 };
 
 vec2 tree_child_weights(TreeWalk walk, LightNode left, LightNode right, ShadingPoint sp) {
-  if (walk.weights == TREE_WEIGHTS_SLC) return slc_child_weights(left, right, sp.p, sp.frame.n);
+  if (walk.weights == TREE_WEIGHTS_SLC) return slc_child_weights(left, right, sp.p, sp.basis.n);
   return vec2(sst_node_weight(left, sp, walk.sst_eps, walk.sst_glossy),
               sst_node_weight(right, sp, walk.sst_eps, walk.sst_glossy));
 }

@@ -144,7 +144,7 @@ class SwappedWeightsSlc final : public TreeSamplerBase {
       auto w = slc_child_weights(tree_[tree_[i].left], tree_[tree_[i].right], point);
       double sum = w[0] + w[1];
       if (!(sum > 0.0)) return e;
-      bool left = sampler.get1d() < w[1] / sum;  // the bug: the sibling's probability
+      bool left = pixel_sampler_get1d(sampler) < w[1] / sum;  // the bug: the sibling's probability
       p *= (left ? w[0] : w[1]) / sum;
       i = left ? tree_[i].left : tree_[i].right;
     }

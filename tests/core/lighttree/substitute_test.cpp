@@ -29,7 +29,7 @@ TEST(Sst, TwoLeavesFollowEquationsOneToThree) {
   LightNode p = merged(leaf(vec3(0, 0, 0), up, 1.0f), leaf(vec3(2, 0, 0), up, 3.0f));
   EXPECT_EQ(p.mean, vec3(1.5f, 0, 0));  // (1 * 0 + 3 * 2) / 4
   EXPECT_EQ(p.normal, up);
-  // Frame::from_normal(+z) has t = +x: s2.x = (1 * 1.5^2 + 3 * 0.5^2) / 4.
+  // basis_from_normal(+z) has t = +x: s2.x = (1 * 1.5^2 + 3 * 0.5^2) / 4.
   EXPECT_FLOAT_EQ(p.variance.x, 0.75f);
   EXPECT_EQ(p.variance.y, 0.0f);
   EXPECT_EQ(p.variance.z, 0.0f);
@@ -124,8 +124,8 @@ Direct direct(const LightTree& tree, uint32_t node) {
   }
   if (d.weight == 0.0) return d;
   d.mean /= d.weight;
-  Frame frame = Frame::from_normal(tree.nodes[node].normal);
-  dvec3 t(frame.t), b(frame.b), n(frame.n);
+  Basis basis = basis_from_normal(tree.nodes[node].normal);
+  dvec3 t(basis.t), b(basis.b), n(basis.n);
   for (uint32_t l : leaves) {
     double c = luminance(tree.nodes[l].intensity) / d.weight;
     dvec3 off = dvec3(tree.nodes[l].mean) - d.mean;
@@ -186,12 +186,12 @@ TEST_P(SstTrees, MeanAndTraceEqualTheDirectComputation) {
 // component is exact, not only the trace.
 TEST_P(SstTrees, EveryComponentIsExactWhenAllNormalsAgree) {
   vec3 normal = glm::normalize(vec3(1.0f, 2.0f, 3.0f));
-  Frame frame = Frame::from_normal(normal);
+  Basis basis = basis_from_normal(normal);
   std::mt19937 rng(101);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   VplSet vpls;
   for (int i = 0; i < 1500; ++i) {
-    vec3 p = vec3(3.0f, -1.0f, 2.0f) + frame.to_world(vec3(u(rng), 0.5f * u(rng), 0.01f * u(rng)));
+    vec3 p = vec3(3.0f, -1.0f, 2.0f) + to_world(basis, vec3(u(rng), 0.5f * u(rng), 0.01f * u(rng)));
     vpls.push_back({p, normal, vec3(0.5f + 0.5f * u(rng))});
   }
   LightTreeParams params;

@@ -236,11 +236,11 @@ std::vector<VplSetCase> vpl_set_cases() {
   Vpl zero{vec3(0.2f, 0.3f, 0.4f), vec3(0, 1, 0), vec3(0.0f)};
   sets.push_back({"zero_intensity_1", VplSet(1, zero)});
   sets.push_back({"zero_intensity_one_point_64", VplSet(64, zero)});
-  HashRng rng(7, 0, 0);
+  HashRng rng = hash_rng(7, 0, 0);
   VplSet spread_zero, mixed, opposite;
   for (int i = 0; i < 64; ++i) {
-    vec3 p(rng.next(), rng.next(), rng.next());
-    vec3 n = glm::normalize(vec3(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f) + vec3(0, 0, 1e-3f));
+    vec3 p(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng));
+    vec3 n = glm::normalize(vec3(hash_rng_next(rng) - 0.5f, hash_rng_next(rng) - 0.5f, hash_rng_next(rng) - 0.5f) + vec3(0, 0, 1e-3f));
     spread_zero.push_back({p, n, vec3(0.0f)});
     mixed.push_back({p, n, i % 2 ? vec3(0.0f) : vec3(0.5f)});
     opposite.push_back({vec3(0.5f), vec3(0, 0, i % 2 ? 1.0f : -1.0f), vec3(1.0f)});
@@ -270,9 +270,9 @@ std::vector<ShadingPoint> shading_points(const VplSet& vpls) {
       ShadingPoint sp;
       sp.p = q.p;
       sp.ng = glm::normalize(q.n);
-      sp.frame = Frame::from_normal(sp.ng);
+      sp.basis = basis_from_normal(sp.ng);
       sp.wo = glm::normalize(vec3(0.3f, 0.0f, 1.0f));
-      sp.brdf = Brdf::from_material(vec3(0.6f), glossy ? 0.5f : 0.0f, glossy ? 0.3f : 1.0f, !glossy);
+      sp.brdf = brdf_from_material(vec3(0.6f), glossy ? 0.5f : 0.0f, glossy ? 0.3f : 1.0f, !glossy);
       points.push_back(sp);
     }
   return points;
@@ -287,13 +287,13 @@ TEST_P(ExtremesVplSet, ExhaustiveAndUniformContributionsFinite) {
   for (const ShadingPoint& sp : shading_points(vpls)) {
     vec3 sum(0.0f);
     for (const Vpl& v : vpls) {
-      vec3 c = vpl_contribution(v, sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, kClamp);
+      vec3 c = vpl_contribution(v, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kClamp);
       ASSERT_TRUE(is_finite(c));
       sum += c;
     }
     ASSERT_TRUE(is_finite(sum));
     // Uniform: one VPL / (1/N).
-    ASSERT_TRUE(is_finite(divide_by_probability(vpl_contribution(vpls.back(), sp.p, sp.ng, sp.frame, sp.brdf, sp.wo,
+    ASSERT_TRUE(is_finite(divide_by_probability(vpl_contribution(vpls.back(), sp.p, sp.ng, sp.basis, sp.brdf, sp.wo,
                                                                  kClamp),
                                                 1.0 / double(vpls.size()))));
   }
@@ -307,15 +307,15 @@ TEST_P(ExtremesVplSet, SlcSamplesFinite) {
     LightTreeParams params;
     params.tree = builder;
     LightTree tree = build_light_tree(vpls, params);
-    HashRng rng(3, 0, 0);
+    HashRng rng = hash_rng(3, 0, 0);
     for (const ShadingPoint& sp : shading_points(vpls))
       for (int s = 0; s < 16; ++s) {
-        TreeTraversal t = traverse_tree(tree, slc_weights(sp), stop_at_leaves, [&] { return rng.next(); });
+        TreeTraversal t = traverse_tree(tree, slc_weights(sp), stop_at_leaves, [&] { return hash_rng_next(rng); });
         if (t.node == kNoNode) continue;
         ASSERT_TRUE(tree[t.node].is_leaf());
         ASSERT_GT(t.probability, 0.0);
         ASSERT_TRUE(std::isfinite(t.probability));
-        vec3 c = vpl_contribution(vpls[tree[t.node].vpl()], sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, kClamp);
+        vec3 c = vpl_contribution(vpls[tree[t.node].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kClamp);
         ASSERT_TRUE(is_finite(divide_by_probability(c, t.probability)));
       }
   }
@@ -331,14 +331,14 @@ TEST_P(ExtremesVplSet, SstSamplesFinite) {
         params.v_min = v_min;
         params.sigma_max = sigma_max;
         LightTree tree = build_light_tree(vpls, params);
-        HashRng rng(4, 0, 0);
+        HashRng rng = hash_rng(4, 0, 0);
         for (const ShadingPoint& sp0 : shading_points(vpls))
           for (int s = 0; s < 8; ++s) {
             ShadingPoint sp = sp0;
             SstLobe lobe = sp.brdf.specular ? SstLobe::glossy : SstLobe::diffuse;
             sp.brdf = lobe_brdf(sp.brdf, lobe);
             TreeTraversal t =
-                traverse_tree(tree, sst_weights(sp, eps, lobe), sst_stop_rule(lobe), [&] { return rng.next(); });
+                traverse_tree(tree, sst_weights(sp, eps, lobe), sst_stop_rule(lobe), [&] { return hash_rng_next(rng); });
             if (t.node == kNoNode) continue;
             ASSERT_GT(t.probability, 0.0);
             ASSERT_TRUE(std::isfinite(t.probability));
@@ -347,12 +347,12 @@ TEST_P(ExtremesVplSet, SstSamplesFinite) {
             if (node.is_leaf()) {
               vpl = vpls[node.vpl()];
             } else {
-              vec3 normals = standard_normals(vec2(rng.next(), rng.next()), vec2(rng.next(), rng.next()));
+              vec3 normals = standard_normals(vec2(hash_rng_next(rng), hash_rng_next(rng)), vec2(hash_rng_next(rng), hash_rng_next(rng)));
               vpl = Vpl{substitute_position(node, normals), node.normal, node.intensity};
               ASSERT_TRUE(is_finite(vpl.position));
               ASSERT_TRUE(is_finite(vpl.normal));
             }
-            vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, kClamp);
+            vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kClamp);
             ASSERT_TRUE(is_finite(divide_by_probability(c, t.probability)));
           }
       }
@@ -375,13 +375,13 @@ TEST_P(ExtremesVplSet, RtslcCutsAndTraversalsFinite) {
       for (uint32_t from : cut) {
         ASSERT_TRUE(std::isfinite(rtslc_cut_error(tree[from], x, n, kClamp)));
         for (uint32_t i = 0; i < 4; ++i) {
-          PixelSampler sampler(11, from, i);
+          PixelSampler sampler = pixel_sampler(11, from, i);
           TreeSample s = rtslc_traverse(tree, from, x, n, sampler);
           if (s.node == kNoNode) continue;
           ASSERT_TRUE(tree[s.node].is_leaf());
           ASSERT_GT(s.probability, 0.0f);
           ASSERT_TRUE(std::isfinite(s.probability));
-          vec3 c = vpl_contribution(vpls[tree[s.node].vpl()], sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, kClamp);
+          vec3 c = vpl_contribution(vpls[tree[s.node].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kClamp);
           ASSERT_TRUE(is_finite(divide_by_probability(c, s.probability)));
         }
       }

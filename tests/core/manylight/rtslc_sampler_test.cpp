@@ -21,13 +21,13 @@ namespace sst {
 namespace {
 
 VplSet random_vpls(int n, uint32_t seed) {
-  HashRng rng(seed, 0, 0, 7);
+  HashRng rng = hash_rng(seed, 0, 0, 7);
   VplSet vpls(static_cast<size_t>(n));
   for (Vpl& v : vpls) {
-    v.position = vec3(rng.next(), rng.next(), rng.next()) * 2.0f - 1.0f;
-    vec3 d(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f);
+    v.position = vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) * 2.0f - 1.0f;
+    vec3 d(hash_rng_next(rng) - 0.5f, hash_rng_next(rng) - 0.5f, hash_rng_next(rng) - 0.5f);
     v.normal = glm::length(d) > 1e-3f ? glm::normalize(d) : vec3(0, 0, 1);
-    v.intensity = vec3(0.1f + rng.next(), 0.1f + rng.next(), 0.1f + rng.next());
+    v.intensity = vec3(0.1f + hash_rng_next(rng), 0.1f + hash_rng_next(rng), 0.1f + hash_rng_next(rng));
   }
   return vpls;
 }
@@ -59,7 +59,7 @@ std::vector<double> check_leaf_probabilities(const LightTree& tree, uint32_t fro
   const int samples = 200000;
   std::vector<double> observed(hi - lo, 0.0);
   for (int i = 0; i < samples; ++i) {
-    PixelSampler sampler(seed, from, uint32_t(i));
+    PixelSampler sampler = pixel_sampler(seed, from, uint32_t(i));
     TreeSample s = rtslc_traverse(tree, from, x, n, sampler, weights);
     if (s.node == kNoNode || s.node < lo || s.node >= hi) {
       ADD_FAILURE() << "traversal from " << from << " ended at " << s.node;
@@ -127,7 +127,7 @@ TEST(RtslcTraversal, SlcWeightsDeadBranchHasProbabilityZero) {
     for (uint32_t l = lo; l < hi; ++l) sum += rtslc_leaf_probability(tree, from, l, x, n, RtslcWeights::slc);
     EXPECT_EQ(sum, 0.0) << "from " << from;
     for (int i = 0; i < 100; ++i) {
-      PixelSampler sampler(13, from, uint32_t(i));
+      PixelSampler sampler = pixel_sampler(13, from, uint32_t(i));
       TreeSample s = rtslc_traverse(tree, from, x, n, sampler, RtslcWeights::slc);
       EXPECT_EQ(s.node, kNoNode);
       EXPECT_EQ(s.probability, 0.0f);
@@ -139,10 +139,10 @@ TEST(RtslcCuts, DisjointAndCoverAllVpls) {
   for (int count : {1, 2, 5, 50, 1000}) {
     VplSet vpls = random_vpls(count, uint32_t(count));
     LightTree tree = perfect_tree(vpls);
-    HashRng rng(5, uint32_t(count), 0);
+    HashRng rng = hash_rng(5, uint32_t(count), 0);
     for (uint32_t m : {1u, 3u, 8u, 32u}) {
-      vec3 x = vec3(rng.next(), rng.next(), rng.next()) * 3.0f - 1.5f;
-      vec3 n = glm::normalize(vec3(rng.next(), rng.next(), rng.next()) - 0.5f);
+      vec3 x = vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) * 3.0f - 1.5f;
+      vec3 n = glm::normalize(vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 0.5f);
       std::vector<uint32_t> cut;
       build_cut(tree, m, [&](const LightNode& node) { return rtslc_cut_error(node, x, n, 0.001f); }, cut);
       EXPECT_EQ(cut.size(), std::min<size_t>(m, size_t(count))) << count << " " << m;

@@ -17,19 +17,19 @@ namespace sst {
 namespace {
 
 vec3 random_unit(HashRng& rng) {
-  float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next();
+  float z = 2.0f * hash_rng_next(rng) - 1.0f, phi = 6.2831853f * hash_rng_next(rng);
   float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 // VPLs in the unit cube with random normals (so no two internal nodes share a normal).
 VplSet random_vpls(int n, uint32_t seed) {
-  HashRng rng(seed, 0, 0);
+  HashRng rng = hash_rng(seed, 0, 0);
   VplSet vpls;
   for (int i = 0; i < n; ++i) {
-    vec3 p(rng.next(), rng.next(), rng.next());
+    vec3 p(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng));
     vec3 normal = random_unit(rng);
-    vec3 intensity(0.1f + rng.next(), 0.1f + rng.next(), 0.1f + rng.next());
+    vec3 intensity(0.1f + hash_rng_next(rng), 0.1f + hash_rng_next(rng), 0.1f + hash_rng_next(rng));
     vpls.push_back({p, normal, intensity});
   }
   return vpls;
@@ -41,7 +41,7 @@ ShadingPoint test_point() {
   ShadingPoint sp;
   sp.p = vec3(0.3f, 0.4f, 0.5f);
   sp.ng = glm::normalize(vec3(0.2f, 0.1f, 1.0f));
-  sp.frame = Frame::from_normal(sp.ng);
+  sp.basis = basis_from_normal(sp.ng);
   sp.wo = glm::normalize(vec3(0.3f, 0.0f, 1.0f));
   sp.brdf.diffuse = vec3(0.5f);
   return sp;
@@ -61,8 +61,8 @@ void check_frequencies(const LightTree& tree, const ChildWeights& weights, const
   }
   expected[n] = std::max(0.0, 1.0 - sum) * draws;
   for (int s = 0; s < draws; ++s) {
-    HashRng rng(7, 0, uint32_t(s));
-    TreeTraversal t = traverse_tree(tree, weights, stop, [&] { return rng.next(); });
+    HashRng rng = hash_rng(7, 0, uint32_t(s));
+    TreeTraversal t = traverse_tree(tree, weights, stop, [&] { return hash_rng_next(rng); });
     if (t.node == kNoNode) {
       observed[n] += 1.0;
       continue;
@@ -81,7 +81,7 @@ ShadingPoint point_below() {
   ShadingPoint sp = test_point();
   sp.p = vec3(0.5f, 0.4f, -0.3f);
   sp.ng = glm::normalize(vec3(0.1f, 0.0f, 1.0f));
-  sp.frame = Frame::from_normal(sp.ng);
+  sp.basis = basis_from_normal(sp.ng);
   return sp;
 }
 
@@ -132,7 +132,7 @@ TEST(SlcSampler, ZeroWeightsAndDeadBranchesMatchTraversalFrequencies) {
 // reach (c_j / P_j drawn with probability P_j), so it equals exhaustive (without visibility,
 // which both trace the same way) iff every VPL with c_j > 0 has P_j > 0.
 TEST(SlcSampler, EveryContributingVplIsReachable) {
-  HashRng rng(17, 0, 0);
+  HashRng rng = hash_rng(17, 0, 0);
   for (int set = 0; set < 10; ++set) {
     VplSet vpls = random_vpls(40, 100 + set);
     for (const char* kind : {"radix", "perfect", "agglomerative"}) {
@@ -141,13 +141,13 @@ TEST(SlcSampler, EveryContributingVplIsReachable) {
       LightTree tree = build_light_tree(vpls, params);
       for (int k = 0; k < 50; ++k) {
         ShadingPoint sp = test_point();
-        sp.p = 1.6f * vec3(rng.next(), rng.next(), rng.next()) - 0.3f;
-        sp.ng = glm::normalize(2.0f * vec3(rng.next(), rng.next(), rng.next()) - 1.0f);
-        sp.frame = Frame::from_normal(sp.ng);
+        sp.p = 1.6f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 0.3f;
+        sp.ng = glm::normalize(2.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 1.0f);
+        sp.basis = basis_from_normal(sp.ng);
         std::vector<double> p = stop_probabilities(tree, slc_weights(sp), stop_at_leaves);
         for (uint32_t i = tree.first_leaf; i < tree.first_leaf + tree.leaf_count; ++i) {
           if (tree[i].vpl() == kNoNode) continue;
-          vec3 c = vpl_contribution(vpls[tree[i].vpl()], sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, 0.01f);
+          vec3 c = vpl_contribution(vpls[tree[i].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, 0.01f);
           if (max_component(c) > 0.0f) { ASSERT_GT(p[i], 0.0) << kind << " leaf " << i; }
         }
       }
@@ -156,16 +156,16 @@ TEST(SlcSampler, EveryContributingVplIsReachable) {
 }
 
 TEST(SlcSampler, CosineBoundIsConservative) {
-  HashRng rng(5, 0, 0);
+  HashRng rng = hash_rng(5, 0, 0);
   for (int i = 0; i < 2000; ++i) {
-    vec3 a(rng.next(), rng.next(), rng.next()), b(rng.next(), rng.next(), rng.next());
+    vec3 a(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)), b(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng));
     Bounds3 box{glm::min(a, b), glm::max(a, b)};
-    vec3 x = 2.0f * vec3(rng.next(), rng.next(), rng.next()) - 0.5f;
+    vec3 x = 2.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 0.5f;
     vec3 n = random_unit(rng);
     float bound = box_cos_bound(box, x, n);
     ASSERT_TRUE(bound >= 0.0f && bound <= 1.0f);
     for (int k = 0; k < 20; ++k) {
-      vec3 y = box.lo + (box.hi - box.lo) * vec3(rng.next(), rng.next(), rng.next());
+      vec3 y = box.lo + (box.hi - box.lo) * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng));
       float len = glm::length(y - x);
       if (len > 0.0f) { ASSERT_LE(glm::dot(n, (y - x) / len), bound + 1e-5f); }
     }

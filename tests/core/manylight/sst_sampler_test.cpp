@@ -17,29 +17,29 @@ namespace {
 constexpr float kEps = 0.01f;
 
 vec3 random_unit(HashRng& rng) {
-  float z = 2.0f * rng.next() - 1.0f, phi = 6.2831853f * rng.next();
+  float z = 2.0f * hash_rng_next(rng) - 1.0f, phi = 6.2831853f * hash_rng_next(rng);
   float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
   return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 VplSet random_vpls(int n, uint32_t seed) {
-  HashRng rng(seed, 0, 0);
+  HashRng rng = hash_rng(seed, 0, 0);
   VplSet vpls;
   for (int i = 0; i < n; ++i)
-    vpls.push_back({vec3(rng.next(), rng.next(), rng.next()), random_unit(rng),
-                    vec3(0.1f + rng.next(), 0.1f + rng.next(), 0.1f + rng.next())});
+    vpls.push_back({vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)), random_unit(rng),
+                    vec3(0.1f + hash_rng_next(rng), 0.1f + hash_rng_next(rng), 0.1f + hash_rng_next(rng))});
   return vpls;
 }
 
 // Two walls of a room corner (floor z = 0 facing up, wall x = 0 facing +x): planar clusters,
 // so internal nodes become suitable.
 VplSet corner_vpls(int n, uint32_t seed) {
-  HashRng rng(seed, 0, 0);
+  HashRng rng = hash_rng(seed, 0, 0);
   VplSet vpls;
   for (int i = 0; i < n; ++i) {
     bool floor = i % 2 == 0;
-    vec3 p = floor ? vec3(rng.next(), rng.next(), 0.0f) : vec3(0.0f, rng.next(), rng.next());
-    vpls.push_back({p, floor ? vec3(0, 0, 1) : vec3(1, 0, 0), vec3(0.2f + rng.next())});
+    vec3 p = floor ? vec3(hash_rng_next(rng), hash_rng_next(rng), 0.0f) : vec3(0.0f, hash_rng_next(rng), hash_rng_next(rng));
+    vpls.push_back({p, floor ? vec3(0, 0, 1) : vec3(1, 0, 0), vec3(0.2f + hash_rng_next(rng))});
   }
   return vpls;
 }
@@ -48,9 +48,9 @@ ShadingPoint point_at(vec3 p, vec3 n, bool glossy = false) {
   ShadingPoint sp;
   sp.p = p;
   sp.ng = glm::normalize(n);
-  sp.frame = Frame::from_normal(sp.ng);
+  sp.basis = basis_from_normal(sp.ng);
   sp.wo = glm::normalize(vec3(0.3f, 0.0f, 1.0f));
-  sp.brdf = Brdf::from_material(vec3(0.6f), glossy ? 0.5f : 0.0f, glossy ? 0.3f : 1.0f, !glossy);
+  sp.brdf = brdf_from_material(vec3(0.6f), glossy ? 0.5f : 0.0f, glossy ? 0.3f : 1.0f, !glossy);
   return sp;
 }
 
@@ -70,8 +70,8 @@ double check_distribution(const LightTree& tree, const ChildWeights& weights, co
   for (size_t i = 0; i < n; ++i) expected[i] = p[i] * draws;
   expected[n] = std::max(0.0, 1.0 - sum) * draws;
   for (int s = 0; s < draws; ++s) {
-    HashRng rng(9, 1, uint32_t(s));
-    TreeTraversal t = traverse_tree(tree, weights, stop, [&] { return rng.next(); });
+    HashRng rng = hash_rng(9, 1, uint32_t(s));
+    TreeTraversal t = traverse_tree(tree, weights, stop, [&] { return hash_rng_next(rng); });
     if (t.node == kNoNode) {
       observed[n] += 1.0;
       continue;
@@ -136,19 +136,19 @@ TEST(SstSampler, GlossyWalkReachesLeavesWithMatchingFrequencies) {
 // Unbiasedness without substitutes, exactly (see slc_sampler_test.cpp): every VPL with a
 // non-zero contribution under the lobe's BRDF has a non-zero probability, in both lobes.
 TEST(SstSampler, EveryContributingVplIsReachableWithoutSubstitutes) {
-  HashRng rng(17, 0, 0);
+  HashRng rng = hash_rng(17, 0, 0);
   for (int set = 0; set < 10; ++set) {
     VplSet vpls = set % 2 ? random_vpls(40, 100 + set) : corner_vpls(40, 100 + set);
     LightTree tree = build_light_tree(vpls, {});
     for (int k = 0; k < 100; ++k) {
-      vec3 x = 1.6f * vec3(rng.next(), rng.next(), rng.next()) - 0.3f;
-      vec3 n = glm::normalize(2.0f * vec3(rng.next(), rng.next(), rng.next()) - 1.0f);
+      vec3 x = 1.6f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 0.3f;
+      vec3 n = glm::normalize(2.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 1.0f);
       SstLobe lobe = k % 2 ? SstLobe::glossy : SstLobe::diffuse;
       ShadingPoint sp = point_at(x, n, lobe == SstLobe::glossy);
       sp.brdf = lobe_brdf(sp.brdf, lobe);
       std::vector<double> p = stop_probabilities(tree, sst_weights(sp, kEps, lobe), sst_stop_rule(lobe, false));
       for (uint32_t i = tree.first_leaf; i < tree.first_leaf + tree.leaf_count; ++i) {
-        vec3 c = vpl_contribution(vpls[tree[i].vpl()], sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, kEps);
+        vec3 c = vpl_contribution(vpls[tree[i].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kEps);
         if (max_component(c) > 0.0f) { ASSERT_GT(p[i], 0.0) << "leaf " << i << " lobe " << int(lobe); }
       }
     }
@@ -159,26 +159,26 @@ TEST(SstSampler, EveryContributingVplIsReachableWithoutSubstitutes) {
 // visibility): everything finite, substitutes inside their boxes.
 void expect_finite_samples(const VplSet& vpls, const LightTreeParams& params) {
   LightTree tree = build_light_tree(vpls, params);
-  HashRng rng(21, 0, 0);
+  HashRng rng = hash_rng(21, 0, 0);
   for (int s = 0; s < 200; ++s) {
-    vec3 x = 3.0f * vec3(rng.next(), rng.next(), rng.next()) - 1.0f;
+    vec3 x = 3.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 1.0f;
     ShadingPoint sp = point_at(x, random_unit(rng), s % 2 == 1);
     SstLobe lobe = s % 2 == 1 ? SstLobe::glossy : SstLobe::diffuse;
     sp.brdf = lobe_brdf(sp.brdf, lobe);
-    TreeTraversal t = traverse_tree(tree, sst_weights(sp, kEps, lobe), sst_stop_rule(lobe), [&] { return rng.next(); });
+    TreeTraversal t = traverse_tree(tree, sst_weights(sp, kEps, lobe), sst_stop_rule(lobe), [&] { return hash_rng_next(rng); });
     if (t.node == kNoNode) continue;
     const LightNode& node = tree[t.node];
     Vpl vpl = vpls[0];
     if (node.is_leaf()) {
       vpl = vpls[node.vpl()];
     } else {
-      vec3 normals = standard_normals(vec2(rng.next(), rng.next()), vec2(rng.next(), rng.next()));
+      vec3 normals = standard_normals(vec2(hash_rng_next(rng), hash_rng_next(rng)), vec2(hash_rng_next(rng), hash_rng_next(rng)));
       vpl = Vpl{substitute_position(node, normals), node.normal, node.intensity};
       ASSERT_TRUE(is_finite(vpl.position));
       ASSERT_TRUE(glm::all(glm::greaterThanEqual(vpl.position, node.bounds_lo)) &&
                   glm::all(glm::lessThanEqual(vpl.position, node.bounds_hi)));
     }
-    vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.frame, sp.brdf, sp.wo, kEps);
+    vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kEps);
     ASSERT_TRUE(is_finite(divide_by_probability(c, t.probability)));
     ASSERT_GT(t.probability, 0.0);
   }

@@ -16,13 +16,13 @@ struct Integrals {
 };
 Integrals integrate(const Brdf& b, vec3 wo, int n) {
   Integrals r;
-  HashRng rng(11, 0, 0);
+  HashRng rng = hash_rng(11, 0, 0);
   for (int i = 0; i < n; ++i) {
-    vec3 wi = sample_cosine_hemisphere(rng.next(), rng.next());
+    vec3 wi = sample_cosine_hemisphere(hash_rng_next(rng), hash_rng_next(rng));
     float pdf = cosine_hemisphere_pdf(wi.z);
     if (pdf <= 0.0f) continue;
-    r.albedo += b.eval(wo, wi) * wi.z / pdf;
-    r.pdf_mass += b.pdf(wo, wi) / pdf;
+    r.albedo += brdf_eval(b, wo, wi) * wi.z / pdf;
+    r.pdf_mass += brdf_pdf(b, wo, wi) / pdf;
   }
   r.albedo /= float(n);
   r.pdf_mass /= n;
@@ -30,7 +30,7 @@ Integrals integrate(const Brdf& b, vec3 wo, int n) {
 }
 
 TEST(Brdf, LambertReflectsItsAlbedo) {
-  Brdf b = Brdf::from_material(vec3(0.2f, 0.5f, 0.8f), 0.0f, 1.0f, true);
+  Brdf b = brdf_from_material(vec3(0.2f, 0.5f, 0.8f), 0.0f, 1.0f, true);
   Integrals r = integrate(b, glm::normalize(vec3(0.3f, 0.1f, 1.0f)), 20000);
   EXPECT_NEAR(r.albedo.x, 0.2f, 0.002f);
   EXPECT_NEAR(r.albedo.z, 0.8f, 0.008f);
@@ -38,7 +38,7 @@ TEST(Brdf, LambertReflectsItsAlbedo) {
 }
 
 TEST(Brdf, DiffuseOnlyIgnoresMetallicAndRoughness) {
-  Brdf b = Brdf::from_material(vec3(0.5f), 1.0f, 0.0f, true);
+  Brdf b = brdf_from_material(vec3(0.5f), 1.0f, 0.0f, true);
   EXPECT_FALSE(b.specular);
   EXPECT_EQ(b.diffuse, vec3(0.5f));
 }
@@ -46,14 +46,14 @@ TEST(Brdf, DiffuseOnlyIgnoresMetallicAndRoughness) {
 TEST(Brdf, SampleWeightEqualsEvalCosOverPdf) {
   for (float roughness : {0.05f, 0.3f, 0.7f, 1.0f})
     for (float metallic : {0.0f, 1.0f}) {
-      Brdf b = Brdf::from_material(vec3(0.9f, 0.6f, 0.3f), metallic, roughness, false);
+      Brdf b = brdf_from_material(vec3(0.9f, 0.6f, 0.3f), metallic, roughness, false);
       vec3 wo = glm::normalize(vec3(0.5f, -0.2f, 0.8f));
-      HashRng rng(1, 2, 3);
+      HashRng rng = hash_rng(1, 2, 3);
       for (int i = 0; i < 2000; ++i) {
         BrdfSample s;
-        if (!b.sample(wo, vec2(rng.next(), rng.next()), s)) continue;
+        if (!brdf_sample(b, wo, vec2(hash_rng_next(rng), hash_rng_next(rng)), s)) continue;
         ASSERT_GT(s.wi.z, 0.0f);
-        vec3 expected = b.eval(wo, s.wi) * s.wi.z / b.pdf(wo, s.wi);
+        vec3 expected = brdf_eval(b, wo, s.wi) * s.wi.z / brdf_pdf(b, wo, s.wi);
         ASSERT_NEAR(s.weight.x, expected.x, 1e-4f * std::max(1.0f, expected.x));
         ASSERT_TRUE(is_finite(s.weight));
       }
@@ -63,14 +63,14 @@ TEST(Brdf, SampleWeightEqualsEvalCosOverPdf) {
 TEST(Brdf, SampledDirectionsFollowThePdf) {
   // E over sampled wi of g(wi)/pdf(wi) = integral of g over the hemisphere where pdf > 0; with
   // g = cos/pi that integral is 1 when the pdf covers the hemisphere.
-  Brdf b = Brdf::from_material(vec3(0.5f), 0.0f, 0.4f, false);
+  Brdf b = brdf_from_material(vec3(0.5f), 0.0f, 0.4f, false);
   vec3 wo = glm::normalize(vec3(0.2f, 0.0f, 1.0f));
-  HashRng rng(4, 5, 6);
+  HashRng rng = hash_rng(4, 5, 6);
   double sum = 0.0;
   const int n = 400000;
   for (int i = 0; i < n; ++i) {
     BrdfSample s;
-    if (!b.sample(wo, vec2(rng.next(), rng.next()), s)) continue;
+    if (!brdf_sample(b, wo, vec2(hash_rng_next(rng), hash_rng_next(rng)), s)) continue;
     sum += (s.wi.z / kPi) / s.pdf;
   }
   EXPECT_NEAR(sum / n, 1.0, 0.01);
@@ -82,14 +82,14 @@ TEST(Brdf, GlossyAlbedoAgreesBetweenEstimatorsAndStaysBelowOne) {
   // so they must agree; single-scattering GGX loses energy, so it is below 1.
   vec3 wo = glm::normalize(vec3(0.0f, 0.3f, 1.0f));
   for (float roughness : {0.3f, 0.6f, 1.0f}) {
-    Brdf metal = Brdf::from_material(vec3(1.0f), 1.0f, roughness, false);
+    Brdf metal = brdf_from_material(vec3(1.0f), 1.0f, roughness, false);
     Integrals cosine = integrate(metal, wo, 400000);
-    HashRng rng(8, 8, 8);
+    HashRng rng = hash_rng(8, 8, 8);
     double sampled = 0.0;
     const int n = 400000;
     for (int i = 0; i < n; ++i) {
       BrdfSample s;
-      if (metal.sample(wo, vec2(rng.next(), rng.next()), s)) sampled += s.weight.x;
+      if (brdf_sample(metal, wo, vec2(hash_rng_next(rng), hash_rng_next(rng)), s)) sampled += s.weight.x;
     }
     sampled /= n;
     EXPECT_NEAR(cosine.albedo.x, sampled, 0.02 * sampled) << roughness;
@@ -99,9 +99,9 @@ TEST(Brdf, GlossyAlbedoAgreesBetweenEstimatorsAndStaysBelowOne) {
 }
 
 TEST(Brdf, BelowTheHorizonIsBlack) {
-  Brdf b = Brdf::from_material(vec3(0.5f), 0.0f, 0.5f, false);
-  EXPECT_EQ(b.eval(vec3(0, 0, 1), vec3(0, 0.5f, -0.5f)), vec3(0.0f));
-  EXPECT_EQ(b.pdf(vec3(0, 0.5f, -0.5f), vec3(0, 0, 1)), 0.0f);
+  Brdf b = brdf_from_material(vec3(0.5f), 0.0f, 0.5f, false);
+  EXPECT_EQ(brdf_eval(b, vec3(0, 0, 1), vec3(0, 0.5f, -0.5f)), vec3(0.0f));
+  EXPECT_EQ(brdf_pdf(b, vec3(0, 0.5f, -0.5f), vec3(0, 0, 1)), 0.0f);
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ struct Prepared {
     Ray ray;
     ray.origin = vec3(x, y, 5.0f);
     ray.direction = vec3(0, 0, -1);
-    PixelSampler sampler(1, 2, 3);
+    PixelSampler sampler = pixel_sampler(1, 2, 3);
     RayCounters counters;
     PathSample s = trace_path(context, params, ray, sampler, counters);
     return s.direct + s.indirect;
@@ -257,7 +257,7 @@ TEST(PathTracerAnalytic, EmissiveQuadOverLambertPlaneMatchesIntegratedIrradiance
       Ray ray;
       ray.origin = x + vec3(0, 0, 0.3f);  // below the light, looking straight down
       ray.direction = vec3(0, 0, -1);
-      PixelSampler sampler(5, 77, uint32_t(i));
+      PixelSampler sampler = pixel_sampler(5, 77, uint32_t(i));
       RayCounters counters;
       PathSample ps = trace_path(p.context, params, ray, sampler, counters);
       double v = ps.direct.x;

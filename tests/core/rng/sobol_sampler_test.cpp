@@ -15,9 +15,9 @@ TEST(SobolSampler, EveryPowerOfTwoPrefixIsStratified) {
     for (int set = 0; set < 3; ++set) {
       std::vector<vec2> points;
       for (int i = 0; i < n; ++i) {
-        PixelSampler s(42, pixel, uint32_t(i));
-        for (int skip = 0; skip < set; ++skip) s.get2d();
-        points.push_back(s.get2d());
+        PixelSampler s = pixel_sampler(42, pixel, uint32_t(i));
+        for (int skip = 0; skip < set; ++skip) pixel_sampler_get2d(s);
+        points.push_back(pixel_sampler_get2d(s));
       }
       for (int a = 0; a <= k; ++a) {
         int columns = 1 << a, rows = 1 << (k - a);
@@ -30,21 +30,24 @@ TEST(SobolSampler, EveryPowerOfTwoPrefixIsStratified) {
 
 TEST(SobolSampler, PixelsAndSetsAreDecorrelated) {
   std::set<uint32_t> first_points;
-  for (uint32_t pixel = 0; pixel < 1024; ++pixel) first_points.insert(uint32_t(PixelSampler(1, pixel, 0).get2d().x * 1e6f));
+  for (uint32_t pixel = 0; pixel < 1024; ++pixel) {
+    PixelSampler first = pixel_sampler(1, pixel, 0);
+    first_points.insert(uint32_t(pixel_sampler_get2d(first).x * 1e6f));
+  }
   EXPECT_GT(first_points.size(), 1000u);
-  PixelSampler s(1, 5, 0);
-  vec2 a = s.get2d(), b = s.get2d();
+  PixelSampler s = pixel_sampler(1, 5, 0);
+  vec2 a = pixel_sampler_get2d(s), b = pixel_sampler_get2d(s);
   EXPECT_NE(a, b);
-  EXPECT_EQ(s.sets_used(), 2u);
+  EXPECT_EQ(s.sets_used, 2u);
 }
 
 TEST(SobolSampler, MeanOverManyPixelsIsUniform) {
   double sum = 0.0;
   const int pixels = 4096;
   for (int p = 0; p < pixels; ++p) {
-    PixelSampler s(3, uint32_t(p), 7);
-    s.get2d();
-    sum += s.get2d().y;
+    PixelSampler s = pixel_sampler(3, uint32_t(p), 7);
+    pixel_sampler_get2d(s);
+    sum += pixel_sampler_get2d(s).y;
   }
   EXPECT_NEAR(sum / pixels, 0.5, 6.0 * std::sqrt(1.0 / 12.0 / pixels));
 }

@@ -21,8 +21,8 @@ TEST(DiscreteDistribution, FrequenciesMatchPmf) {
   EXPECT_NEAR(sum, 1.0, 1e-6);
   const int n = 200000;
   std::vector<double> observed(weights.size(), 0.0), expected(weights.size());
-  HashRng rng(3, 0, 0);
-  for (int i = 0; i < n; ++i) observed[d.sample(rng.next())] += 1.0;
+  HashRng rng = hash_rng(3, 0, 0);
+  for (int i = 0; i < n; ++i) observed[d.sample(hash_rng_next(rng))] += 1.0;
   for (size_t i = 0; i < weights.size(); ++i) expected[i] = n * weights[i] / total;
   EXPECT_EQ(observed[1], 0.0);
   EXPECT_EQ(observed[4], 0.0);
@@ -45,9 +45,9 @@ TEST(Sampling, CosineHemisphereMatchesItsPdf) {
   // Bin cos(theta) into 20 bins: P(bin) = integral of 2 cos sin dtheta = c1^2 - c0^2.
   const int n = 200000, bins = 20;
   std::vector<double> observed(bins, 0.0), expected(bins);
-  HashRng rng(5, 1, 2);
+  HashRng rng = hash_rng(5, 1, 2);
   for (int i = 0; i < n; ++i) {
-    vec3 w = sample_cosine_hemisphere(rng.next(), rng.next());
+    vec3 w = sample_cosine_hemisphere(hash_rng_next(rng), hash_rng_next(rng));
     ASSERT_NEAR(glm::length(w), 1.0f, 1e-5f);
     ASSERT_GE(w.z, 0.0f);
     observed[std::min(bins - 1, int(w.z * bins))] += 1.0;
@@ -62,11 +62,11 @@ TEST(Sampling, CosineHemisphereMatchesItsPdf) {
 }
 
 TEST(Sampling, UniformSphereAndTriangle) {
-  HashRng rng(9, 9, 9);
+  HashRng rng = hash_rng(9, 9, 9);
   vec3 mean(0.0f);
   const int n = 100000;
   for (int i = 0; i < n; ++i) {
-    vec3 w = sample_uniform_sphere(rng.next(), rng.next());
+    vec3 w = sample_uniform_sphere(hash_rng_next(rng), hash_rng_next(rng));
     ASSERT_NEAR(glm::length(w), 1.0f, 1e-5f);
     mean += w;
   }
@@ -75,7 +75,7 @@ TEST(Sampling, UniformSphereAndTriangle) {
   EXPECT_LT(glm::length(mean), 6.0f * std::sqrt(1.0f / 3.0f / n) * std::sqrt(3.0f));
   vec2 centroid(0.0f);
   for (int i = 0; i < n; ++i) {
-    vec2 b = sample_uniform_triangle(rng.next(), rng.next());
+    vec2 b = sample_uniform_triangle(hash_rng_next(rng), hash_rng_next(rng));
     ASSERT_GE(b.x, 0.0f);
     ASSERT_GE(b.y, 0.0f);
     ASSERT_LE(b.x + b.y, 1.0f + 1e-6f);

@@ -19,13 +19,13 @@ TEST(SphericalTriangle, DirectionsAreUniformOverTheSolidAngle) {
   vec3 mid = 0.5f * (v1 + v2);
   float whole = triangle_solid_angle(p, v0, v1, v2);
   float half = triangle_solid_angle(p, v0, v1, mid);
-  HashRng rng(1, 1, 1);
+  HashRng rng = hash_rng(1, 1, 1);
   const int n = 200000;
   int in_first = 0;
   for (int i = 0; i < n; ++i) {
     vec2 b;
     float pdf;
-    ASSERT_TRUE(sample_spherical_triangle(p, v0, v1, v2, vec2(rng.next(), rng.next()), &b, &pdf));
+    ASSERT_TRUE(sample_spherical_triangle(p, v0, v1, v2, vec2(hash_rng_next(rng), hash_rng_next(rng)), b, pdf));
     ASSERT_NEAR(pdf, 1.0f / whole, 1e-3f / whole);
     // The median from v0 to mid splits the triangle: b.x > b.y is the side of v1.
     if (b.x > b.y) ++in_first;
@@ -37,8 +37,8 @@ TEST(SphericalTriangle, DirectionsAreUniformOverTheSolidAngle) {
 TEST(SphericalTriangle, DegenerateInputsAreRefused) {
   vec2 b;
   float pdf;
-  EXPECT_FALSE(sample_spherical_triangle(vec3(0), vec3(0), {1, 0, 1}, {0, 1, 1}, vec2(0.5f), &b, &pdf));
-  EXPECT_FALSE(sample_spherical_triangle(vec3(0), {1, 0, 1}, {2, 0, 2}, {3, 0, 3}, vec2(0.5f), &b, &pdf));
+  EXPECT_FALSE(sample_spherical_triangle(vec3(0), vec3(0), {1, 0, 1}, {0, 1, 1}, vec2(0.5f), b, pdf));
+  EXPECT_FALSE(sample_spherical_triangle(vec3(0), {1, 0, 1}, {2, 0, 2}, {3, 0, 3}, vec2(0.5f), b, pdf));
 }
 
 }  // namespace

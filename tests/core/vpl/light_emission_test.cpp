@@ -17,9 +17,9 @@ using test::MeanError;
 using test::PreparedScene;
 
 EmissionSample draw(const LightSampler& lights, uint32_t i, bool* ok) {
-  HashRng rng(11, i, 0, 77);
-  float u_pick = rng.next();
-  vec2 u_pos(rng.next(), rng.next()), u_dir(rng.next(), rng.next());
+  HashRng rng = hash_rng(11, i, 0, 77);
+  float u_pick = hash_rng_next(rng);
+  vec2 u_pos(hash_rng_next(rng), hash_rng_next(rng)), u_dir(hash_rng_next(rng), hash_rng_next(rng));
   EmissionSample e;
   *ok = lights.sample_emission(u_pick, u_pos, u_dir, e);
   return e;

@@ -36,9 +36,9 @@ TEST(VplShading, IrradianceIsIntensityTimesBothCosinesOverDistanceSquared) {
     EXPECT_NEAR(got.x, expected.x, 1e-5f * expected.x + 1e-9f);
     EXPECT_NEAR(got.z, expected.z, 1e-5f * expected.z + 1e-9f);
     // Lambert: radiance = albedo / pi * E whatever wo.
-    Brdf lambert = Brdf::from_material(vec3(0.6f), 0.0f, 1.0f, true);
-    Frame frame = Frame::from_normal(n);
-    vec3 l = vpl_contribution(v, x, n, frame, lambert, glm::normalize(vec3(0.3f, 0.1f, 1.0f)), 1e-3f);
+    Brdf lambert = brdf_from_material(vec3(0.6f), 0.0f, 1.0f, true);
+    Basis basis = basis_from_normal(n);
+    vec3 l = vpl_contribution(v, x, n, basis, lambert, glm::normalize(vec3(0.3f, 0.1f, 1.0f)), 1e-3f);
     EXPECT_NEAR(l.x, 0.6f / kPi * expected.x, 1e-5f * expected.x + 1e-9f);
   }
 }
@@ -100,14 +100,14 @@ TEST_P(VplExhaustive, MatchesThePathTracersIndirectLight) {
     Hit hit = p.accel->intersect(ray);
     ASSERT_TRUE(hit.valid());
     Surface s = make_surface(p.scene, hit, ray.direction);
-    Brdf brdf = Brdf::from_material(s.base_color, s.metallic, s.roughness, true);
-    Frame frame = Frame::from_normal(s.ns);
-    vec3 wo = frame.to_local(-ray.direction);
+    Brdf brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, true);
+    Basis basis = basis_from_normal(s.ns);
+    vec3 wo = to_local(basis, -ray.direction);
 
     // One estimate per light path: P times the sum over its VPLs.
     std::vector<double> per_path(stats.paths, 0.0);
     for (size_t j = 0; j < vpls.size(); ++j) {
-      vec3 c = vpl_contribution(vpls[j], s.p, s.ng, frame, brdf, wo, clamp);
+      vec3 c = vpl_contribution(vpls[j], s.p, s.ng, basis, brdf, wo, clamp);
       if (c.x > 0.0f && p.accel->occluded(vpl_shadow_ray(*p.accel, s.p, s.ng, vpls[j]))) c = vec3(0.0f);
       per_path[j / size_t(bounces)] += double(c.x) * double(stats.paths);
     }
@@ -115,7 +115,7 @@ TEST_P(VplExhaustive, MatchesThePathTracersIndirectLight) {
 
     std::vector<double> samples;
     for (uint32_t i = 0; i < 200000; ++i) {
-      PixelSampler sampler(5, t, i);
+      PixelSampler sampler = pixel_sampler(5, t, i);
       RayCounters counters;
       samples.push_back(trace_path(context, pt, ray, sampler, counters).indirect.x);
     }

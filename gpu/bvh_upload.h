@@ -1,5 +1,5 @@
 // The flat BVH on the GPU: core/accel/flat_bvh.h's node and triangle arrays uploaded as they are
-// (their std430 layout is gpu/shared/bvh_layout.h), which gpu/shared/bvh_traverse.h traverses.
+// (their std430 layout is core/accel/bvh_layout.h), which core/accel/bvh_traverse.h traverses.
 // The twin of gpu/scene_upload.h and gpu/light_upload.h for the BVH.
 #pragma once
 #include <vector>

@@ -1,10 +1,10 @@
-// The push constants every rendering shader starts with (gpu/shared/frame_layout.h FrameParams),
+// The push constants every rendering shader starts with (core/render/frame_layout.h FrameParams),
 // from the CPU's camera, so that both backends generate the same rays.
 #pragma once
 #include <cstdint>
 
 #include "core/render/camera.h"
-#include "gpu/shared/frame_layout.h"
+#include "core/render/frame_layout.h"
 
 namespace sst::gpu {
 

@@ -1,6 +1,6 @@
 // What every method on the Vulkan backend renders with: the device, and the scene, its BVH and its
-// lights uploaded to it. Built once per render by render_frame (core/render/renderer.cpp) and handed
-// to the method through RenderContext::gpu.
+// lights uploaded to it. Built once per render by render_frame (core/pipeline/renderer.cpp) and
+// handed to the method's Vulkan side (gpu/vulkan_method.h).
 #pragma once
 #include <memory>
 #include <nlohmann/json.hpp>

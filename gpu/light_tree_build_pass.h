@@ -22,7 +22,7 @@
 #include "core/vpl/vpl.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/gpu_buffer.h"
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 #include "gpu/vulkan_context.h"
 
 namespace sst::gpu {

@@ -1,5 +1,5 @@
 // The lights on the GPU: a LightSampler's tables (core/lights/light_sampler.h) packed into the
-// std430 arrays of gpu/shared/light_layout.h (pack_lights: plain C++, no device needed) and
+// std430 arrays of core/lights/light_layout.h (pack_lights: plain C++, no device needed) and
 // uploaded into storage buffers (GpuLights), which gpu/shaders/light_sampler.glsl reads to sample
 // exactly what LightSampler samples. The twin of gpu/scene_upload.h for the lights.
 #pragma once
@@ -10,7 +10,7 @@
 
 #include "core/lights/light_sampler.h"
 #include "core/scene/scene.h"
-#include "gpu/shared/light_layout.h"
+#include "core/lights/light_layout.h"
 
 namespace sst::gpu {
 

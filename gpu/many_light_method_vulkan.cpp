@@ -1,9 +1,6 @@
-// ManyLightMethod on the Vulkan backend: the same stages as ManyLightMethod::render, with the VPLs
-// generated, radix and perfect light trees built, and the pixels sampled on the GPU. The per-block
-// cuts (rtslc, hybrid) and agglomerative trees are built on the CPU by the sampler's own prepare()
-// and uploaded (the record says where each ran under "built_on").
+#include "gpu/many_light_method_vulkan.h"
+
 #include "core/manylight/gpu_sampler_inputs.h"
-#include "core/manylight/many_light_method.h"
 #include "core/vpl/vpl_ply.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/light_tree_build_pass.h"
@@ -11,44 +8,46 @@
 #include "gpu/many_light_upload.h"
 #include "gpu/vpl_generation_pass.h"
 
-namespace sst {
+namespace sst::gpu {
 
-FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer& timer) {
-  const gpu::GpuRenderContext& gpu = *ctx.gpu;
+FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRenderContext& gpu, StageTimer& timer) {
+  const VplParams& vpl_params = method_.vpl_params();
+  const nlohmann::json params = method_.params();
+  IndirectSampler& sampler = method_.sampler();
   FrameOutput frame;
   frame.allocate(ctx.width, ctx.height);
 
   VplStats vpl_stats;
   double vpl_gpu_ms = 0.0;
   VplSet vpls = timer.time("vpl_generation", [&] {
-    return gpu::generate_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.scene, vpl_params_,
-                                  ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms);
+    return generate_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.scene, vpl_params,
+                             ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms);
   });
-  if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
+  if (!vpl_params.export_vpls.empty()) write_vpls_ply(vpl_params.export_vpls, vpls);
   ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
   // Radix and perfect trees are built on the GPU, agglomerative ones on the CPU. The builder's
   // shaders are compiled in stage shader_compile, like the sampling shader.
   auto on_gpu = [](const std::string& tree) { return tree == "radix" || tree == "perfect"; };
-  std::unique_ptr<gpu::GpuLightTreeBuilder> tree_builder;
-  if (on_gpu(params_.value("tree", "")))
-    tree_builder = timer.time("shader_compile", [&] { return std::make_unique<gpu::GpuLightTreeBuilder>(gpu.vulkan()); });
-  sampler_->set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const Bounds3* scene_bounds,
+  std::unique_ptr<GpuLightTreeBuilder> tree_builder;
+  if (on_gpu(params.value("tree", "")))
+    tree_builder = timer.time("shader_compile", [&] { return std::make_unique<GpuLightTreeBuilder>(gpu.vulkan()); });
+  sampler.set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const Bounds3* scene_bounds,
                                  LightTreeBuildStats* stats, std::string* built_on) {
     if (!on_gpu(p.tree) || !tree_builder) return build_light_tree(v, p, scene_bounds, stats);
     *built_on = "gpu";
     return tree_builder->build(v, p, scene_bounds, stats);
   });
-  sampler_->prepare(mlf, timer, frame.method_counters);
-  sampler_->set_tree_builder({});
+  sampler.prepare(mlf, timer, frame.method_counters);
+  sampler.set_tree_builder({});
 
   GpuSamplerInputs in;
-  sampler_->gpu_inputs(mlf, in);
-  auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<gpu::GpuManyLightInputs>(gpu.vulkan(), vpls, in); });
-  auto pipeline = timer.time("shader_compile", [&] { return gpu::make_many_light_pipeline(gpu); });
-  gpu::ManyLightPassOutput out = timer.time("sampling", [&] {
-    return gpu::render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
-                                  ctx.options.diffuse_only, frame);
+  sampler.gpu_inputs(mlf, in);
+  auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<GpuManyLightInputs>(gpu.vulkan(), vpls, in); });
+  auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu); });
+  ManyLightPassOutput out = timer.time("sampling", [&] {
+    return render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
+                             ctx.options.diffuse_only, frame);
   });
 
   frame.extra_layers = {{"indirect_variance", out.variance}, {"traversal_depth", out.traversal_depth}};
@@ -65,4 +64,4 @@ FrameOutput ManyLightMethod::render_vulkan(const RenderContext& ctx, StageTimer&
   return frame;
 }
 
-}  // namespace sst
+}  // namespace sst::gpu

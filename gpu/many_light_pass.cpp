@@ -3,7 +3,7 @@
 #include "gpu/compute_pipeline.h"
 #include "gpu/frame_params.h"
 #include "gpu/sample_chunks.h"
-#include "gpu/shared/frame_layout.h"
+#include "core/render/frame_layout.h"
 
 namespace sst::gpu {
 namespace {

@@ -1,7 +1,7 @@
 // The many-light samplers' inputs on the GPU (issue 5): the VPLs and what a sampler's prepare()
 // built on the CPU (GpuSamplerInputs, core/manylight/gpu_sampler_inputs.h: the tree, the per-block
 // cuts and their guides, the mock cut, SamplerParams), uploaded into the storage buffers that
-// MANY_LIGHT_BUFFERS(first) declares (gpu/shared/many_light_layout.h) for
+// MANY_LIGHT_BUFFERS(first) declares (core/manylight/many_light_layout.h) for
 // gpu/shaders/indirect_sampler.glsl to read.
 #pragma once
 #include <cstddef>
@@ -10,7 +10,7 @@
 
 #include "core/manylight/gpu_sampler_inputs.h"
 #include "core/vpl/vpl.h"
-#include "gpu/shared/many_light_layout.h"
+#include "core/manylight/many_light_layout.h"
 
 namespace sst::gpu {
 

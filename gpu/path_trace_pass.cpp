@@ -7,7 +7,7 @@
 #include "gpu/frame_params.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/sample_chunks.h"
-#include "gpu/shared/path_trace_layout.h"
+#include "core/pt/path_trace_layout.h"
 
 namespace sst::gpu {
 namespace {

@@ -1,5 +1,5 @@
-// The `pt` method on the Vulkan backend (issue 5): the twin of PathTracer::render
-// (core/render/path_tracer.cpp). gpu/shaders/pt.comp traces every pixel's paths with the CPU's
+// The `pt` method on the Vulkan backend: the twin of PathTracer::render
+// (core/pt/path_tracer.cpp). gpu/shaders/pt.comp traces every pixel's paths with the CPU's
 // random numbers through the flat BVH; this pass dispatches it in chunks of samples and turns the
 // per-pixel sums into the FrameOutput the CPU fills (color, direct, indirect, albedo, normal,
 // depth and the ray counters).
@@ -8,7 +8,7 @@
 #include "core/render/frame.h"
 #include <memory>
 
-#include "core/render/path_tracer.h"
+#include "core/pt/path_tracer.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/bvh_upload.h"
 #include "gpu/light_upload.h"

@@ -1,20 +1,19 @@
-// PathTracer on the Vulkan backend: the whole frame in gpu/shaders/pt.comp (gpu/path_trace_pass.h),
-// timed as stage "render" like the CPU's (after "shader_compile"), with the GPU's own time beside it.
-#include "core/render/path_tracer.h"
+#include "gpu/path_tracer_vulkan.h"
+
 #include "gpu/gpu_render_context.h"
 #include "gpu/path_trace_pass.h"
 
-namespace sst {
+namespace sst::gpu {
 
-FrameOutput PathTracer::render_vulkan(const RenderContext& ctx, StageTimer& timer) {
-  auto pipeline = timer.time("shader_compile", [&] { return gpu::make_path_trace_pipeline(ctx.gpu->vulkan()); });
-  gpu::GpuPathTraceResult r = timer.time("render", [&] {
-    return gpu::render_path_tracer(*ctx.gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
-                                   ctx.options.spp, params_, ctx.options.diffuse_only);
+FrameOutput VulkanPathTracer::render(const RenderContext& ctx, const GpuRenderContext& gpu, StageTimer& timer) {
+  auto pipeline = timer.time("shader_compile", [&] { return make_path_trace_pipeline(gpu.vulkan()); });
+  GpuPathTraceResult r = timer.time("render", [&] {
+    return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
+                              ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
   });
   r.frame.method_counters["gpu_ms"] = {{"render", r.gpu_ms}};
   r.frame.method_counters["gpu"] = {{"render_dispatches", r.dispatches}};
   return std::move(r.frame);
 }
 
-}  // namespace sst
+}  // namespace sst::gpu

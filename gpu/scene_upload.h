@@ -1,6 +1,6 @@
-// The scene on the GPU: a sst::Scene packed into the std430 arrays of gpu/shared/scene_layout.h
+// The scene on the GPU: a sst::Scene packed into the std430 arrays of core/scene/scene_layout.h
 // (pack_scene: plain C++, no device needed) and uploaded into storage buffers (GpuScene), which
-// gpu/shaders/surface.glsl reads to compute exactly what core/render/surface.cpp computes.
+// gpu/shaders/surface.glsl reads to compute exactly what core/shading/surface.cpp computes.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/scene/scene.h"
-#include "gpu/shared/scene_layout.h"
+#include "core/scene/scene_layout.h"
 
 namespace sst::gpu {
 

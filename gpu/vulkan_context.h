@@ -1,12 +1,12 @@
-// The Vulkan instance, the chosen physical device and a logical device with one compute queue
-// (issue 5: groundwork, no rendering yet). Plain Vulkan C API; built only when the Vulkan loader is
-// found (SST_HAVE_VULKAN). Backend-neutral callers use core/render/backend.h instead.
+// The Vulkan instance, the chosen physical device and a logical device with one compute queue.
+// Plain Vulkan C API; built only when the Vulkan loader is found. Backend-neutral callers use
+// core/pipeline/backend.h instead.
 #pragma once
 #include <vulkan/vulkan.h>
 
 #include <vector>
 
-#include "core/render/backend.h"
+#include "core/util/device_info.h"
 
 namespace sst::gpu {
 

@@ -21,7 +21,7 @@
 #define BVH_CONTEXT_ARG bvh_buffers,
 #define BVH_NODE(i) bvh_buffers.nodes[i]
 #define BVH_TRIANGLE(i) bvh_buffers.triangles[i]
-#include "gpu/shared/bvh_traverse.h"
+#include "core/accel/bvh_traverse.h"
 
 namespace sst {
 namespace {

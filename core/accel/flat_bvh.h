@@ -1,7 +1,7 @@
-// The BVH of the Vulkan backend (issue 5): built on the CPU with Embree's rtcBuildBVH (SAH,
+// The BVH of the Vulkan backend: built on the CPU with Embree's rtcBuildBVH (SAH,
 // RTC_BUILD_QUALITY_HIGH, binary, leaves of at most 4 triangles), flattened depth first into the
-// node and triangle arrays of gpu/shared/bvh_layout.h, ready for upload. flat_bvh_intersect and
-// flat_bvh_occluded run the shared traversal (gpu/shared/bvh_traverse.h) on the CPU, the very
+// node and triangle arrays of core/accel/bvh_layout.h, ready for upload. flat_bvh_intersect and
+// flat_bvh_occluded run the shared traversal (core/accel/bvh_traverse.h) on the CPU, the very
 // code the shaders run, so the tree and the traversal are tested against Embree here.
 #pragma once
 #include <cstdint>
@@ -10,7 +10,7 @@
 #include "core/accel/embree_accel.h"
 #include "core/math/math.h"
 #include "core/scene/scene.h"
-#include "gpu/shared/bvh_layout.h"
+#include "core/accel/bvh_layout.h"
 
 namespace sst {
 

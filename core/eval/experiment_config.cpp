@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "core/eval/reference.h"
-#include "core/render/method_registry.h"
+#include "core/pipeline/method_registry.h"
 #include "core/render/render_options.h"
 #include "core/util/error.h"
 #include "core/util/hash.h"

@@ -3,9 +3,9 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "core/render/method_registry.h"
-#include "core/render/render_record.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/method_registry.h"
+#include "core/pipeline/render_record.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "core/util/error.h"
 #include "core/util/hash.h"

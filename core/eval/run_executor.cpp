@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "core/metrics/metrics.h"
-#include "core/render/render_record.h"
+#include "core/pipeline/render_record.h"
 #include "core/scene/scene_summary.h"
 #include "core/util/json_io.h"
 #include "core/util/params.h"

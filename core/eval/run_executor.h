@@ -7,7 +7,7 @@
 
 #include "core/eval/experiment_config.h"
 #include "core/image/image.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/scene.h"
 
 namespace sst {

@@ -1,6 +1,6 @@
 #include "core/lights/light_sampler.h"
 
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/sampling/sampling.h"
 #include "core/sampling/spherical_triangle.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 
 namespace sst {
 

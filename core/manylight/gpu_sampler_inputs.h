@@ -1,5 +1,5 @@
 // What a many-light sampler hands to the Vulkan backend after prepare(): the GPU twin of its
-// state (gpu/shared/many_light_layout.h). The tree and the per-block cuts stay built on the CPU
+// state (core/manylight/many_light_layout.h). The tree and the per-block cuts stay built on the CPU
 // by the existing code; the GPU only evaluates estimate() per shading point
 // (gpu/shaders/indirect_sampler.glsl). Plain C++: no Vulkan needed to fill it.
 #pragma once
@@ -11,7 +11,7 @@
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
 #include "core/manylight/indirect_sampler.h"
-#include "gpu/shared/many_light_layout.h"
+#include "core/manylight/many_light_layout.h"
 
 namespace sst {
 

@@ -3,7 +3,7 @@
 #include <atomic>
 #include <mutex>
 
-#include "core/render/path_tracer.h"
+#include "core/pt/path_tracer.h"
 #include "core/render/pixel_loop.h"
 #include "core/vpl/vpl_clamp.h"
 #include "core/vpl/vpl_ply.h"

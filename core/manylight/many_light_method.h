@@ -17,11 +17,10 @@ class ManyLightMethod final : public Method {
  public:
   ManyLightMethod(VplParams vpl_params, nlohmann::json params, std::unique_ptr<IndirectSampler> sampler);
   FrameOutput render(const RenderContext& context, StageTimer& timer) override;
-#ifdef SST_HAVE_VULKAN
-  // VPLs and sampling on the GPU, the tree and cuts on the CPU (gpu/many_light_method_vulkan.cpp).
-  FrameOutput render_vulkan(const RenderContext& context, StageTimer& timer) override;
-#endif
   nlohmann::json params() const override { return params_; }
+  // For the method's other backends (gpu/many_light_method_vulkan.h), which run the same stages.
+  const VplParams& vpl_params() const { return vpl_params_; }
+  IndirectSampler& sampler() { return *sampler_; }
 
  private:
   VplParams vpl_params_;

@@ -1,6 +1,6 @@
-// A rendering method (pt, and the many-light samplers to come) renders one frame of a prepared
-// scene. Methods are created by name through the registry (method_registry.h), which is the one
-// place a new method is added; sst-render, sst-eval and the tests reach it from there.
+// A rendering method (pt, or one of the many-light methods) renders one frame of a prepared scene
+// on the CPU. Methods are created by name through the registry (core/pipeline/method_registry.h),
+// which is the one place a new method is added; sst-render, sst-eval and the tests reach it there.
 #pragma once
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -13,10 +13,6 @@
 #include "core/render/render_options.h"
 #include "core/scene/scene.h"
 #include "core/util/stage_timer.h"
-
-namespace sst::gpu {
-class GpuRenderContext;  // gpu/gpu_render_context.h: the device and the scene on it
-}
 
 namespace sst {
 
@@ -31,18 +27,14 @@ struct RenderContext {
   const RenderOptions& options;
   int width, height;
   bool quiet = false;
-  // The Vulkan device and the scene uploaded to it; null on the CPU backend.
-  const gpu::GpuRenderContext* gpu = nullptr;
 };
 
 class Method {
  public:
   virtual ~Method() = default;
   // Renders the frame, timing its stages into `timer` (names: "render", or the method's stages).
+  // A method's Vulkan side is an object of its own in gpu/ (gpu/vulkan_method.h).
   virtual FrameOutput render(const RenderContext& context, StageTimer& timer) = 0;
-  // The same frame on the Vulkan backend (context.gpu is set): the same parameters, random numbers
-  // and outputs. A method without a Vulkan port keeps this default, which throws sst::Error.
-  virtual FrameOutput render_vulkan(const RenderContext& context, StageTimer& timer);
   // Every parameter in effect, for the JSON record.
   virtual nlohmann::json params() const = 0;
 };

@@ -2,10 +2,11 @@
 
 #include <cmath>
 
-#include "core/render/backend.h"
 #include "core/util/error.h"
 
 namespace sst {
+
+const char* backend_names() { return "cpu, vulkan, auto"; }
 
 void validate(const RenderOptions& o) {
   if (o.width < 0 || o.height < 0) throw Error("width and height must be >= 0");
@@ -16,7 +17,7 @@ void validate(const RenderOptions& o) {
     throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
   if (o.threads < 0) throw Error("threads must be >= 0");
   if (!std::isfinite(o.exposure)) throw Error("exposure must be finite");
-  // Only the name is checked here; resolve_backend (core/render/backend.h) decides what runs.
+  // Only the name is checked here; resolve_backend (in the pipeline) decides what runs.
   if (o.backend != "cpu" && o.backend != "vulkan" && o.backend != "auto")
     throw Error("unknown backend '" + o.backend + "' (valid: " + backend_names() + ")");
 }

@@ -40,4 +40,7 @@ struct RenderOptions {
 // Throws sst::Error for impossible values (naming the option and the value).
 void validate(const RenderOptions& options);
 
+// The valid values of RenderOptions::backend, for error messages: "cpu, vulkan, auto".
+const char* backend_names();
+
 }  // namespace sst

@@ -6,7 +6,7 @@
 #include <chrono>
 #include <string>
 
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 #include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
 #include "core/vpl/vpl_clamp.h"

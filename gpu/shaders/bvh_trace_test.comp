@@ -1,4 +1,4 @@
-// Traces a batch of rays through the flat BVH (gpu/shared/bvh_traverse.h, the same code the CPU
+// Traces a batch of rays through the flat BVH (core/accel/bvh_traverse.h, the same code the CPU
 // runs in core/accel/flat_bvh.cpp): the cross-backend test of the traversal. One invocation per
 // ray; closest hit to hits[], occlusion over the same [tmin, tmax) to occluded[]
 // (BVH_VISIBLE, BVH_OCCLUDED or BVH_STACK_OVERFLOW).
@@ -8,7 +8,7 @@
 
 layout(local_size_x = 64) in;
 
-#include "../shared/bvh_layout.h"
+#include "core/accel/bvh_layout.h"
 
 layout(std430, set = 0, binding = 0) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, set = 0, binding = 1) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
@@ -20,7 +20,7 @@ layout(push_constant) uniform Params { uint ray_count; } params;
 
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
-#include "../shared/bvh_traverse.h"
+#include "core/accel/bvh_traverse.h"
 
 void main() {
   uint i = gl_GlobalInvocationID.x;

@@ -1,5 +1,5 @@
 // GLSL port of PinholeCamera::generate (core/render/camera.cpp), same expression order.
-// Needs `frame` (FrameParams, gpu/shared/frame_layout.h) in scope.
+// Needs `frame` (FrameParams, core/render/frame_layout.h) in scope.
 #ifndef SST_CAMERA_GLSL
 #define SST_CAMERA_GLSL
 #include "core/math/vector_math.h"

@@ -5,9 +5,9 @@
 // turned into a Surface, and averaged into the AOVs the CPU's FrameOutput has (albedo, normal,
 // depth) plus the emission the camera sees.
 // Bindings: 0..4 the scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7 GBufferTexel output.
-#include "gpu/shared/scene_layout.h"
-#include "gpu/shared/bvh_layout.h"
-#include "gpu/shared/frame_layout.h"
+#include "core/scene/scene_layout.h"
+#include "core/accel/bvh_layout.h"
+#include "core/render/frame_layout.h"
 SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
@@ -15,7 +15,7 @@ layout(std430, binding = 7) writeonly buffer GBuffer { GBufferTexel gbuffer[]; }
 layout(push_constant) uniform Push { FrameParams frame; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
-#include "gpu/shared/bvh_traverse.h"
+#include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
 #include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/camera.glsl"

@@ -1,18 +1,18 @@
 // The GLSL twin of core/manylight/indirect_sampler.h and its six samplers (exhaustive, uniform,
 // slc, sst, rtslc, hybrid; gpu/shaders/indirect/*.glsl): one indirect estimate at a shading point,
 // from the state the CPU's IndirectSampler::prepare built and gpu_inputs handed over
-// (gpu/shared/many_light_layout.h): the same method, the same random numbers drawn in the same
+// (core/manylight/many_light_layout.h): the same method, the same random numbers drawn in the same
 // order from the pixel's PixelSampler, the same nodes visited and shadow rays traced, values equal
 // to float rounding (see each method's file for where the CPU computes in double).
 //
 // The includer declares, before including this file:
-//   MANY_LIGHT_BUFFERS(first)     the sampler's inputs (gpu/shared/many_light_layout.h)
-//   the flat BVH traversal        gpu/shared/bvh_traverse.h with BVH_NODE / BVH_TRIANGLE
+//   MANY_LIGHT_BUFFERS(first)     the sampler's inputs (core/manylight/many_light_layout.h)
+//   the flat BVH traversal        core/accel/bvh_traverse.h with BVH_NODE / BVH_TRIANGLE
 //   SCENE_RAY_EPSILON             EmbreeAccel's epsilon_ (gpu/shaders/ray_offset.glsl)
 // e.g.
-//   #include "gpu/shared/many_light_layout.h"
+//   #include "core/manylight/many_light_layout.h"
 //   MANY_LIGHT_BUFFERS(0)
-//   ... BVH buffers, #define BVH_NODE / BVH_TRIANGLE, #include "gpu/shared/bvh_traverse.h"
+//   ... BVH buffers, #define BVH_NODE / BVH_TRIANGLE, #include "core/accel/bvh_traverse.h"
 //   #define SCENE_RAY_EPSILON push.ray_epsilon
 //   #include "gpu/shaders/indirect_sampler.glsl"
 #ifndef SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL

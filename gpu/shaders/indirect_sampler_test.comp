@@ -6,8 +6,8 @@
 // and the sets drawn after it written out.
 // Bindings: 0..6 the many-light inputs (MANY_LIGHT_BUFFERS), 7 BVH nodes, 8 BVH triangles,
 // 9 IndirectTestPoint points[], 10 IndirectTestResult results[].
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/bvh_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/accel/bvh_layout.h"
 
 // A shading point with its pixel sampler's state (C++ twin in the test).
 struct IndirectTestPoint {
@@ -50,7 +50,7 @@ layout(push_constant) uniform Push {
 
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
-#include "gpu/shared/bvh_traverse.h"
+#include "core/accel/bvh_traverse.h"
 #define SCENE_RAY_EPSILON push.ray_epsilon
 #include "gpu/shaders/indirect_sampler.glsl"
 

@@ -1,12 +1,12 @@
 // The GLSL twin of core/lights/light_sampler.cpp (LightSampler::sample, pdf_emissive_hit,
 // sample_emission) and of core/sampling/discrete_distribution.cpp (the light pick), in the C++'s
-// operation order and `precise`, over the tables of gpu/shared/light_layout.h.
+// operation order and `precise`, over the tables of core/lights/light_layout.h.
 //
 // The including shader declares, before including this file, the scene buffers
-// (SCENE_BUFFERS(first), gpu/shared/scene_layout.h) and the light buffers
-// (LIGHT_BUFFERS(first), gpu/shared/light_layout.h), e.g.
-//   #include "gpu/shared/scene_layout.h"
-//   #include "gpu/shared/light_layout.h"
+// (SCENE_BUFFERS(first), core/scene/scene_layout.h) and the light buffers
+// (LIGHT_BUFFERS(first), core/lights/light_layout.h), e.g.
+//   #include "core/scene/scene_layout.h"
+//   #include "core/lights/light_layout.h"
 //   SCENE_BUFFERS(0)
 //   LIGHT_BUFFERS(5)
 //   #include "gpu/shaders/light_sampler.glsl"

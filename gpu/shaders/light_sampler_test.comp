@@ -13,8 +13,8 @@
 //   17 light_sample_emission(u_pick, u_pos, u_dir) returned true, 18..20 position, 21..23 normal,
 //   24..26 direction, 27..29 weight, 30 light,
 //   31 light_pick(u_pick) index, 32 its remapped u, 33..35 0.
-#include "gpu/shared/scene_layout.h"
-#include "gpu/shared/light_layout.h"
+#include "core/scene/scene_layout.h"
+#include "core/lights/light_layout.h"
 SCENE_BUFFERS(0)
 LIGHT_BUFFERS(5)
 #include "gpu/shaders/light_sampler.glsl"

@@ -8,8 +8,8 @@
 //
 // Bindings: 0 uvec2 keys[] (sorted, unique), 1 LightNode nodes[], 2 uint parents[],
 // 3 uint visits[]. Push: count (internal nodes, VPLs - 1), first_leaf (= count).
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) readonly buffer Keys { uvec2 keys[]; };

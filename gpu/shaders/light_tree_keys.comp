@@ -6,8 +6,8 @@
 //
 // Bindings: 0 GpuVpl vpls[], 1 uvec2 keys[], 2 uint ids[]. Push: LightTreeBuildPush (count,
 // grid_origin, grid_scale; the grid is MortonGrid::over(vpl bounds), computed on the host).
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) readonly buffer Vpls { GpuVpl vpls[]; };

@@ -11,8 +11,8 @@
 // Dispatch: one workgroup per VPL (x, y with x <= 65535), ltb_group() is the sorted position.
 // Bindings: 0 GpuVpl vpls[], 1 uint ids[] (sorted), 2 uint parents[], 3 uint visits[] (zeroed by
 // the hierarchy pass), 4 LightNode nodes[]. Push: count (VPLs), first_leaf, v_min, sigma_max_abs.
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 #include "gpu/shaders/light_tree_substitute.glsl"
 
 // One invocation per workgroup: lavapipe (llvmpipe, LLVM 15) runs a workgroup's invocations as

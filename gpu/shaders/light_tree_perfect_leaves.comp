@@ -9,8 +9,8 @@
 // Dispatch: first_leaf (L, the power of two >= count) invocations, ltb_index().
 // Bindings: 0 GpuVpl vpls[], 1 uint ids[] (sorted), 2 LightNode nodes[] (2L). Push: count (VPLs),
 // first_leaf (L), v_min, sigma_max_abs.
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 #include "gpu/shaders/light_tree_substitute.glsl"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;

@@ -10,8 +10,8 @@
 // invocations, ltb_index().
 // Bindings: 0 LightNode nodes[]. Push: count (the level's width), first_leaf (its first node),
 // v_min, sigma_max_abs.
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 #include "gpu/shaders/light_tree_substitute.glsl"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;

@@ -7,7 +7,7 @@
 // within a digit, which keeps the pass stable.
 //
 // Bindings: 0 uvec2 keys[], 1 uint counts[LTB_RADIX * tile_count]. Push: count, shift, tile_count.
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 #include "gpu/shaders/light_tree_sort.glsl"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;

@@ -9,7 +9,7 @@
 //
 // Bindings: 0 uint counts[LTB_RADIX * tile_count] (in place), 1 uint digit_totals[LTB_RADIX].
 // Push: tile_count. Dispatch: LTB_RADIX workgroups.
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) buffer Counts { uint counts[]; };

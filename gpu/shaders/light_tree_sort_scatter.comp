@@ -8,7 +8,7 @@
 //
 // Bindings: 0 uvec2 keys_in[], 1 uint ids_in[], 2 uint counts[] (scanned), 3 uint digit_totals[],
 // 4 uvec2 keys_out[], 5 uint ids_out[]. Push: count, shift, tile_count.
-#include "gpu/shared/light_tree_build_layout.h"
+#include "core/lighttree/light_tree_build_layout.h"
 #include "gpu/shaders/light_tree_sort.glsl"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;

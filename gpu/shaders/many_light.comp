@@ -9,11 +9,11 @@
 // [sample_offset, sample_offset + spp); the first overwrites the texels, the rest add to them.
 // Bindings: 0..4 scene, 5..6 BVH, 7..11 lights, 12..18 the sampler's inputs (MANY_LIGHT_BUFFERS),
 // 19 the texels, 20 the traversal-depth histogram (65 bins, the last one "64 or more").
-#include "gpu/shared/scene_layout.h"
-#include "gpu/shared/bvh_layout.h"
-#include "gpu/shared/light_layout.h"
-#include "gpu/shared/many_light_layout.h"
-#include "gpu/shared/frame_layout.h"
+#include "core/scene/scene_layout.h"
+#include "core/accel/bvh_layout.h"
+#include "core/lights/light_layout.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/render/frame_layout.h"
 SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
@@ -29,7 +29,7 @@ layout(push_constant) uniform Push {
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON scene_epsilon
-#include "gpu/shared/bvh_traverse.h"
+#include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
 #include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/camera.glsl"

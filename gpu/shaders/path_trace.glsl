@@ -1,12 +1,12 @@
-// The GLSL twin of core/render/path_tracer.cpp's trace_path and sample_direct: one camera path
+// The GLSL twin of core/pt/path_tracer.cpp's trace_path and sample_direct: one camera path
 // with next-event estimation and MIS (power heuristic) between light and BRDF sampling, in the
 // C++'s order of operations and of random numbers, so that a path draws the CPU's samples and
 // (up to the GPU's sqrt, division and trigonometry) computes the CPU's values.
 //
 // The including shader declares, before including this file:
-//   the scene buffers (SCENE_BUFFERS(first), gpu/shared/scene_layout.h),
-//   the light buffers (LIGHT_BUFFERS(first), gpu/shared/light_layout.h),
-//   BVH_NODE / BVH_TRIANGLE and includes gpu/shared/bvh_traverse.h,
+//   the scene buffers (SCENE_BUFFERS(first), core/scene/scene_layout.h),
+//   the light buffers (LIGHT_BUFFERS(first), core/lights/light_layout.h),
+//   BVH_NODE / BVH_TRIANGLE and includes core/accel/bvh_traverse.h,
 //   SCENE_RAY_EPSILON (EmbreeAccel's scene_ray_epsilon, for gpu/shaders/ray_offset.glsl).
 // Rays are traced through the flat BVH (bvh_traverse.h) where the CPU uses Embree: a ray that
 // grazes an edge may hit on one backend and miss on the other (rare; see

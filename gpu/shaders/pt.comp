@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The `pt` method on the GPU: the twin of PathTracer::render's pixel loop
-// (core/render/path_tracer.cpp). Per pixel and sample index: the camera ray jittered by the
+// (core/pt/path_tracer.cpp). Per pixel and sample index: the camera ray jittered by the
 // pixel's Sobol sample, one path (gpu/shaders/path_trace.glsl), non-finite samples dropped and
 // counted, the rest summed in sample order into the pixel's PathTraceTexel. A frame is rendered in
 // dispatches of consecutive sample indices [sample_offset, sample_offset + spp); the first
@@ -9,10 +9,10 @@
 // the CPU's order. The host divides by the frame's spp (gpu/path_trace_pass.cpp).
 // Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..11 lights
 // (LIGHT_BUFFERS), 12 PathTraceTexel per pixel. Push constants: PathTraceParams.
-#include "gpu/shared/scene_layout.h"
-#include "gpu/shared/bvh_layout.h"
-#include "gpu/shared/light_layout.h"
-#include "gpu/shared/path_trace_layout.h"
+#include "core/scene/scene_layout.h"
+#include "core/accel/bvh_layout.h"
+#include "core/lights/light_layout.h"
+#include "core/pt/path_trace_layout.h"
 SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
@@ -22,7 +22,7 @@ layout(push_constant) uniform Push { PathTraceParams params; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
-#include "gpu/shared/bvh_traverse.h"
+#include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/camera.glsl"
 #include "gpu/shaders/path_trace.glsl"
 

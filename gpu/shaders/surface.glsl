@@ -1,16 +1,16 @@
 // A ray's hit turned into what shading needs, on the GPU: the GLSL twin of
-// core/render/surface.cpp (make_surface, triangle_emission, triangle_geometric_normal,
+// core/shading/surface.cpp (make_surface, triangle_emission, triangle_geometric_normal,
 // triangle_area) and of core/scene/texture.cpp (Texture::sample, Texture::texel).
 //
 // The including shader declares, before including this file, the scene buffers of
-// gpu/shared/scene_layout.h under these names (SCENE_BUFFERS(first_binding) does it):
+// core/scene/scene_layout.h under these names (SCENE_BUFFERS(first_binding) does it):
 //   SceneVertex   scene_vertices[]
 //   SceneTriangle scene_triangles[]
 //   SceneMaterial scene_materials[]
 //   SceneTexture  scene_textures[]
 //   uint          scene_texels[]
 // e.g.
-//   #include "gpu/shared/scene_layout.h"
+//   #include "core/scene/scene_layout.h"
 //   SCENE_BUFFERS(0)
 //   #include "gpu/shaders/surface.glsl"
 //
@@ -132,7 +132,7 @@ vec4 scene_texture_or_one(int index, vec2 uv) {
   return index >= 0 ? scene_texture_sample(index, uv) : vec4(1.0);
 }
 
-// ---- surfaces (core/render/surface.cpp) ---------------------------------------------------------
+// ---- surfaces (core/shading/surface.cpp) ---------------------------------------------------------
 
 vec2 scene_interpolate_uv(SceneTriangle t, vec2 b) {
   SceneVertex a = scene_vertices[t.v0], b1v = scene_vertices[t.v1], c = scene_vertices[t.v2];

@@ -12,9 +12,9 @@
 //     the BVH stack overflowed (never for a tree build_flat_bvh returned; the host throws),
 //   9.. the lights (LIGHT_BUFFERS).
 // VplSlot and the push constants are mirrored in gpu/vpl_generation_pass.cpp (static_asserts).
-#include "gpu/shared/scene_layout.h"
-#include "gpu/shared/bvh_layout.h"
-#include "gpu/shared/light_layout.h"
+#include "core/scene/scene_layout.h"
+#include "core/accel/bvh_layout.h"
+#include "core/lights/light_layout.h"
 
 // One deposit: position, normal (unit, on the side the light came from), intensity.
 struct VplSlot {
@@ -47,9 +47,9 @@ layout(push_constant) uniform Push {
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
-#include "gpu/shared/bvh_traverse.h"
-#include "core/rng/hash_rng.h"
+#include "core/accel/bvh_traverse.h"
 #include "core/math/vector_math.h"
+#include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
 #include "gpu/shaders/ray_offset.glsl"
 #include "gpu/shaders/surface.glsl"

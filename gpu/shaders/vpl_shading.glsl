@@ -3,7 +3,7 @@
 // that contribution is non-zero, counted as the CPU counts it.
 //
 // The includer provides, before including this file: the flat BVH traversal
-// (gpu/shared/bvh_traverse.h with BVH_NODE/BVH_TRIANGLE defined) and SCENE_RAY_EPSILON
+// (core/accel/bvh_traverse.h with BVH_NODE/BVH_TRIANGLE defined) and SCENE_RAY_EPSILON
 // (see gpu/shaders/ray_offset.glsl).
 #ifndef SST_GPU_SHADERS_VPL_SHADING_GLSL
 #define SST_GPU_SHADERS_VPL_SHADING_GLSL

@@ -2,13 +2,13 @@
 // one line and a non-zero exit.
 #include <gtest/gtest.h>
 
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 
 #include <filesystem>
 #include <fstream>
 
 #include "core/image/image.h"
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "core/util/json_io.h"
 #include "tests/test_util.h"
 

@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <memory>
 
-#include "core/render/method_registry.h"
+#include "core/pipeline/method_registry.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/accel/flat_bvh.h"
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "core/rng/hash_rng.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"

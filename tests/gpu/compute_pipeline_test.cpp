@@ -7,7 +7,7 @@
 #include <bit>
 #include <vector>
 
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "core/rng/hash_rng.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/util/error.h"

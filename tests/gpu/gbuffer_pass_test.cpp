@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "core/metrics/metrics.h"
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "core/render/camera.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "gpu/gbuffer_pass.h"

@@ -10,7 +10,7 @@
 
 #include "core/image/image.h"
 
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "gpu/shader_library.h"
 
 namespace sst::test {

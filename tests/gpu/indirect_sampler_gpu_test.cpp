@@ -23,7 +23,7 @@
 #include "core/manylight/slc_sampler.h"
 #include "core/manylight/sst_sampler.h"
 #include "core/manylight/uniform_sampler.h"
-#include "core/render/path_tracer.h"
+#include "core/pt/path_tracer.h"
 #include "core/scene/default_scene.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/gbuffer_pass.h"

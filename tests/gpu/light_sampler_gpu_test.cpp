@@ -14,7 +14,7 @@
 #include <random>
 
 #include "core/lights/light_sampler.h"
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "core/sampling/spherical_triangle.h"

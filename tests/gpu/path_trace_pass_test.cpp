@@ -26,7 +26,7 @@
 #include "core/accel/flat_bvh.h"
 #include "core/lights/light_sampler.h"
 #include "core/render/camera.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "gpu/path_trace_pass.h"

@@ -1,6 +1,6 @@
-// The scene on the GPU (gpu/scene_upload.h, gpu/shared/scene_layout.h, gpu/shaders/surface.glsl):
+// The scene on the GPU (gpu/scene_upload.h, core/scene/scene_layout.h, gpu/shaders/surface.glsl):
 // pack_scene's invariants without a device, then make_surface evaluated by the shader against
-// core/render/surface.cpp on hits found by Embree. The GPU parts skip where there is no device;
+// core/shading/surface.cpp on hits found by Embree. The GPU parts skip where there is no device;
 // everything is compiled only when the Vulkan backend is (SST_HAVE_VULKAN: gpu/*.cpp exist only
 // then).
 #include <gtest/gtest.h>
@@ -14,8 +14,8 @@
 
 #include "core/accel/embree_accel.h"
 #include "core/image/image.h"
-#include "core/render/backend.h"
-#include "core/render/surface.h"
+#include "core/pipeline/backend.h"
+#include "core/shading/surface.h"
 #include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
 #include "core/scene/default_scene.h"

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "tests/gpu/gpu_test_util.h"

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "core/util/error.h"
 
 #ifdef SST_HAVE_VULKAN

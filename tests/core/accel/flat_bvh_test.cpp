@@ -1,4 +1,4 @@
-// The GPU backend's BVH (core/accel/flat_bvh, gpu/shared/bvh_*.h): the flattened tree's
+// The GPU backend's BVH (core/accel/flat_bvh, core/accel/bvh_*.h): the flattened tree's
 // invariants, and the shared traversal (the code the shaders run, compiled as C++) against
 // Embree: closest hits, occlusion, watertightness at shared edges and vertices, and that the
 // GLSL side still compiles.
@@ -556,7 +556,9 @@ TEST(FlatBvh, GlslTraversalCompiles) {
   if (test::run_command("command -v glslc").exit_code != 0) GTEST_SKIP() << "glslc not found";
   const auto source = std::filesystem::path(SST_SOURCE_DIR) / "gpu/shaders/bvh_trace_test.comp";
   const auto spv = test::temp_dir() / "bvh_trace_test.spv";
-  auto result = test::run_command("glslc '" + source.string() + "' -o '" + spv.string() + "' 2>&1");
+  // -I the source root, as the build compiles every shader: the layouts are included by their path there.
+  auto result = test::run_command("glslc -I '" + std::string(SST_SOURCE_DIR) + "' '" + source.string() + "' -o '" +
+                                  spv.string() + "' 2>&1");
   EXPECT_EQ(result.exit_code, 0) << result.output;
   EXPECT_TRUE(std::filesystem::exists(spv));
 }

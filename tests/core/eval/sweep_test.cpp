@@ -13,7 +13,7 @@
 #include "core/manylight/exhaustive_sampler.h"
 #include "core/manylight/many_light_method.h"
 #include "core/manylight/slc_sampler.h"
-#include "core/render/method_registry.h"
+#include "core/pipeline/method_registry.h"
 #include "core/scene/default_scene.h"
 #include "core/util/error.h"
 #include "core/util/json_io.h"

@@ -19,7 +19,7 @@
 #include "core/manylight/rtslc_sampler.h"
 #include "core/manylight/slc_sampler.h"
 #include "core/manylight/sst_sampler.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/scene/default_scene.h"

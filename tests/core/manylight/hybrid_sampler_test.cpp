@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/render/method_registry.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/method_registry.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "tests/core/manylight/many_light_test_util.h"
 

@@ -2,7 +2,7 @@
 // convergence to exhaustive on the same VPL set (per-pixel z-test with the variance image).
 #include <gtest/gtest.h>
 
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "tests/analytic_scenes.h"
 #include "tests/core/manylight/many_light_test_util.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 
 namespace sst::test {
 

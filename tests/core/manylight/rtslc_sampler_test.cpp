@@ -10,8 +10,8 @@
 #include <bit>
 
 #include "core/manylight/slc_sampler.h"
-#include "core/render/method_registry.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/method_registry.h"
+#include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"
 #include "core/scene/default_scene.h"
 #include "tests/stat_util.h"

@@ -5,8 +5,8 @@
 
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/slc_sampler.h"
-#include "core/render/method_registry.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/method_registry.h"
+#include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"
 #include "core/scene/default_scene.h"
 #include "core/vpl/vpl_shading.h"

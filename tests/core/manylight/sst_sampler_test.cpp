@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/manylight/sst_sampler.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"
 #include "core/scene/default_scene.h"
 #include "core/vpl/vpl_shading.h"

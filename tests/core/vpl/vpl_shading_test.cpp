@@ -3,8 +3,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/render/path_tracer.h"
-#include "core/render/surface.h"
+#include "core/pt/path_tracer.h"
+#include "core/shading/surface.h"
 #include "core/vpl/vpl_generator.h"
 #include "tests/analytic_scenes.h"
 #include "tests/core/vpl/vpl_test_util.h"

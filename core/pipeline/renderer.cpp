@@ -1,4 +1,4 @@
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 
 #include <tbb/global_control.h>
 
@@ -7,13 +7,14 @@
 
 #include "core/accel/embree_accel.h"
 #include "core/lights/light_sampler.h"
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 #include "core/render/camera.h"
-#include "core/render/method_registry.h"
-#include "core/render/render_record.h"
+#include "core/pipeline/method_registry.h"
+#include "core/pipeline/render_record.h"
 
 #ifdef SST_HAVE_VULKAN
 #include "gpu/gpu_render_context.h"
+#include "gpu/vulkan_method.h"
 #endif
 
 namespace sst {
@@ -56,13 +57,14 @@ RenderResult render_frame(const Scene& scene, const RenderOptions& options, cons
   result.device = cpu_device_record(result.options);
   if (result.options.backend == "vulkan") {
 #ifdef SST_HAVE_VULKAN
-    // The CPU structures above stay: VPL methods build their trees and cuts on the CPU.
+    // The method's Vulkan side renders with both the CPU structures above (VPL methods build some
+    // trees and their cuts on the CPU) and the scene uploaded to the device.
+    std::unique_ptr<gpu::VulkanMethod> vulkan_method = gpu::make_vulkan_method(*method, options.method);
     auto gpu = result.timer.time("gpu_setup", [&] {
       return std::make_unique<gpu::GpuRenderContext>(result.options.device, scene, *lights, *accel->flat_bvh());
     });
     result.device = vulkan_device_record(gpu->vulkan().info(), gpu->describe());
-    context.gpu = gpu.get();
-    result.frame = method->render_vulkan(context, result.timer);
+    result.frame = vulkan_method->render(context, *gpu, result.timer);
     return result;
 #endif
   }

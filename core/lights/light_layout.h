@@ -19,8 +19,8 @@
 // (hi = the nearest float, lo = the float nearest to the rest), so that the GPU decides
 // `cdf > u` for a float u exactly as the CPU does (hi > u, or hi == u and lo > 0): the same light
 // is picked for the same u, bit for bit.
-#ifndef SST_GPU_SHARED_LIGHT_LAYOUT_H
-#define SST_GPU_SHARED_LIGHT_LAYOUT_H
+#ifndef SST_CORE_LIGHTS_LIGHT_LAYOUT_H
+#define SST_CORE_LIGHTS_LIGHT_LAYOUT_H
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -94,4 +94,4 @@ static_assert(sizeof(LightEmissive) == 8 && offsetof(LightEmissive, area) == 4);
   layout(std430, binding = (first) + 4) readonly buffer LightOfTriangle { uint light_of_triangle[]; };
 #endif
 
-#endif  // SST_GPU_SHARED_LIGHT_LAYOUT_H
+#endif  // SST_CORE_LIGHTS_LIGHT_LAYOUT_H

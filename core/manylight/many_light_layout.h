@@ -1,4 +1,4 @@
-// The many-light samplers' inputs as they cross the host/GPU boundary (issue 5), defined once for
+// The many-light samplers' inputs as they cross the host/GPU boundary, defined once for
 // C++ (namespace sst::glsl, static_asserts) and GLSL: the VPLs, the light tree's nodes (the very
 // bytes of sst::LightNode, core/lighttree/light_tree.h), the per-block cuts of rtslc and the
 // hybrid with the G-buffer samples they were built for, the hybrid's mock cut, and one
@@ -16,8 +16,8 @@
 //   first + 5  CutGuide      ml_cut_guides[]  BlockCuts::guides
 //   first + 6  uint          ml_mock_cut[]    HybridSampler::mock_cut()
 // Arrays a sampler does not use are bound as 16-byte dummies and never read.
-#ifndef SST_GPU_SHARED_MANY_LIGHT_LAYOUT_H
-#define SST_GPU_SHARED_MANY_LIGHT_LAYOUT_H
+#ifndef SST_CORE_MANYLIGHT_MANY_LIGHT_LAYOUT_H
+#define SST_CORE_MANYLIGHT_MANY_LIGHT_LAYOUT_H
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -143,4 +143,4 @@ inline constexpr uint32_t kManyLightBufferCount = MANY_LIGHT_BUFFER_COUNT;
   layout(std430, binding = (first) + 6) readonly buffer ManyLightMockCut { uint ml_mock_cut[]; };
 #endif
 
-#endif  // SST_GPU_SHARED_MANY_LIGHT_LAYOUT_H
+#endif  // SST_CORE_MANYLIGHT_MANY_LIGHT_LAYOUT_H

@@ -7,7 +7,7 @@
 
 #include "core/image/image.h"
 #include "core/metrics/metrics.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "tests/test_util.h"
 

@@ -1,33 +1,16 @@
 // Which backend a render runs on. Backend-neutral: compiled in every build; the Vulkan parts
 // answer "built without Vulkan" when the build has no Vulkan (SST_HAVE_VULKAN undefined).
 #pragma once
-#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "core/util/device_info.h"
+
 namespace sst {
-
-// One Vulkan physical device that has a compute queue. `index` is its position among such devices
-// (the number --device / VulkanContext take), in the loader's enumeration order.
-struct DeviceInfo {
-  int index = 0;
-  std::string name;
-  std::string type;    // "cpu", "integrated", "discrete", "virtual" or "other"
-  std::string driver;  // driver name and info (e.g. "llvmpipe: Mesa 22.3.6 (LLVM 15.0.6)"); "" if unknown
-  uint32_t api_version = 0;  // VK_MAKE_API_VERSION encoding
-  uint64_t max_storage_buffer_range = 0;  // bytes
-  uint32_t max_compute_workgroup_invocations = 0;
-};
-
-// "1.3.230" from a Vulkan API version number.
-std::string api_version_string(uint32_t api_version);
 
 // The Vulkan devices with a compute queue; never throws. Empty when there is none, with the reason
 // (no driver, no device, built without Vulkan) in *reason when given.
 std::vector<DeviceInfo> list_vulkan_devices(std::string* reason = nullptr);
-
-// The valid values of RenderOptions::backend, for error messages: "cpu, vulkan, auto".
-const char* backend_names();
 
 // Resolves a requested backend to the one that runs:
 //   "cpu"    -> "cpu";

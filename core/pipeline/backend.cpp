@@ -1,5 +1,6 @@
-#include "core/render/backend.h"
+#include "core/pipeline/backend.h"
 
+#include "core/render/render_options.h"
 #include "core/util/error.h"
 
 #ifdef SST_HAVE_VULKAN
@@ -8,12 +9,6 @@
 #endif
 
 namespace sst {
-
-std::string api_version_string(uint32_t v) {
-  // VK_API_VERSION_MAJOR/MINOR/PATCH, spelled out so this compiles without Vulkan headers.
-  return std::to_string((v >> 22) & 0x7Fu) + "." + std::to_string((v >> 12) & 0x3FFu) + "." +
-         std::to_string(v & 0xFFFu);
-}
 
 std::vector<DeviceInfo> list_vulkan_devices(std::string* reason) {
   if (reason) reason->clear();
@@ -31,8 +26,6 @@ std::vector<DeviceInfo> list_vulkan_devices(std::string* reason) {
   return {};
 #endif
 }
-
-const char* backend_names() { return "cpu, vulkan, auto"; }
 
 namespace {
 

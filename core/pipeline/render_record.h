@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/render/backend.h"
-#include "core/render/renderer.h"
+#include "core/pipeline/backend.h"
+#include "core/pipeline/renderer.h"
 #include "core/scene/scene.h"
 #include "core/util/json_io.h"
 

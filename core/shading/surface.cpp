@@ -1,4 +1,4 @@
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 
 namespace sst {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/render/render_record.h"
+#include "core/pipeline/render_record.h"
 
 #include <algorithm>
 #include <thread>

@@ -1,4 +1,4 @@
-#include "core/render/method_registry.h"
+#include "core/pipeline/method_registry.h"
 
 #include "core/manylight/exhaustive_sampler.h"
 #include "core/manylight/hybrid_sampler.h"
@@ -9,7 +9,7 @@
 #include "core/manylight/slc_sampler.h"
 #include "core/manylight/sst_sampler.h"
 #include "core/manylight/tree_method_params.h"
-#include "core/render/path_tracer.h"
+#include "core/pt/path_tracer.h"
 
 namespace sst {
 namespace {

@@ -1,9 +1,9 @@
 // The path tracer against scenes with known radiance (DESIGN.md test layer 2).
-#include "core/render/path_tracer.h"
+#include "core/pt/path_tracer.h"
 
 #include <gtest/gtest.h>
 
-#include "core/render/renderer.h"
+#include "core/pipeline/renderer.h"
 #include "tests/analytic_scenes.h"
 
 namespace sst {

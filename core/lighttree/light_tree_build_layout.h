@@ -5,8 +5,8 @@
 //
 // Sort keys cross the boundary as uvec2 (x = bits 0..31, y = bits 32..63: a uint64_t's bytes on
 // a little-endian host), so that no shader needs the shaderInt64 feature.
-#ifndef SST_GPU_SHARED_LIGHT_TREE_BUILD_LAYOUT_H
-#define SST_GPU_SHARED_LIGHT_TREE_BUILD_LAYOUT_H
+#ifndef SST_CORE_LIGHTTREE_LIGHT_TREE_BUILD_LAYOUT_H
+#define SST_CORE_LIGHTTREE_LIGHT_TREE_BUILD_LAYOUT_H
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -51,4 +51,4 @@ uint ltb_index() {
 uint ltb_group() { return gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x; }
 #endif
 
-#endif  // SST_GPU_SHARED_LIGHT_TREE_BUILD_LAYOUT_H
+#endif  // SST_CORE_LIGHTTREE_LIGHT_TREE_BUILD_LAYOUT_H

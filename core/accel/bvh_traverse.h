@@ -1,4 +1,4 @@
-// Ray traversal of the flat BVH (gpu/shared/bvh_layout.h), written once in the common subset of
+// Ray traversal of the flat BVH (core/accel/bvh_layout.h), written once in the common subset of
 // C++ (glm) and GLSL 4.50, so that the CPU tests (core/accel/flat_bvh.cpp) and the Vulkan
 // shaders run literally the same code.
 //
@@ -37,8 +37,8 @@
 //   component is replaced by +-1e-30 so that no 0 * inf = NaN arises.
 // - Stack: BVH_STACK_SIZE entries; the builder bounds the tree depth by it. An overflow ends the
 //   query with BVH_STACK_OVERFLOW (hit.triangle or the occlusion result), never a silent miss.
-#ifndef SST_GPU_SHARED_BVH_TRAVERSE_H
-#define SST_GPU_SHARED_BVH_TRAVERSE_H
+#ifndef SST_CORE_ACCEL_BVH_TRAVERSE_H
+#define SST_CORE_ACCEL_BVH_TRAVERSE_H
 
 #include "bvh_layout.h"
 
@@ -278,4 +278,4 @@ BVH_FUNC uint bvh_occluded(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, float 
 }  // namespace sst::glsl
 #endif
 
-#endif  // SST_GPU_SHARED_BVH_TRAVERSE_H
+#endif  // SST_CORE_ACCEL_BVH_TRAVERSE_H

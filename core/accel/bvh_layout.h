@@ -1,8 +1,8 @@
-// The ray-tracing BVH as it crosses the host/GPU boundary (issue 5), defined once for C++ and
+// The ray-tracing BVH as it crosses the host/GPU boundary, defined once for C++ and
 // GLSL. In C++ the structures live in namespace sst::glsl and are built from glm types, with
 // static_asserts on size and offsets; in GLSL the same text declares plain structs for std430
 // buffers (include with GL_GOOGLE_include_directive). Built by core/accel/flat_bvh.cpp, traversed
-// by gpu/shared/bvh_traverse.h.
+// by core/accel/bvh_traverse.h.
 //
 // Buffers (all std430, no vec3 arrays: every vec3 is followed by a 4-byte scalar, which std430
 // packs into the vec3's 16-byte slot, exactly like the C++ layout):
@@ -14,8 +14,8 @@
 // Triangles are stored as their three vertices, not as vertex + edges: the watertight test needs
 // the exact vertex coordinates, so that two triangles sharing an edge compute that edge's
 // function from bit-identical inputs.
-#ifndef SST_GPU_SHARED_BVH_LAYOUT_H
-#define SST_GPU_SHARED_BVH_LAYOUT_H
+#ifndef SST_CORE_ACCEL_BVH_LAYOUT_H
+#define SST_CORE_ACCEL_BVH_LAYOUT_H
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -105,4 +105,4 @@ static_assert(offsetof(BvhHit, v) == 12);
 }  // namespace sst::glsl
 #endif
 
-#endif  // SST_GPU_SHARED_BVH_LAYOUT_H
+#endif  // SST_CORE_ACCEL_BVH_LAYOUT_H

@@ -2,8 +2,8 @@
 // static_asserts) and GLSL: the camera and frame parameters (push constants, filled from
 // core/render/camera.h's PinholeCamera basis so that both backends generate the same rays) and
 // the per-pixel outputs of the first-hit (G-buffer) and many-light sampling passes.
-#ifndef SST_GPU_SHARED_FRAME_LAYOUT_H
-#define SST_GPU_SHARED_FRAME_LAYOUT_H
+#ifndef SST_CORE_RENDER_FRAME_LAYOUT_H
+#define SST_CORE_RENDER_FRAME_LAYOUT_H
 
 #ifdef __cplusplus
 #include <cstddef>

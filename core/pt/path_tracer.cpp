@@ -1,7 +1,7 @@
-#include "core/render/path_tracer.h"
+#include "core/pt/path_tracer.h"
 
 #include "core/render/pixel_loop.h"
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 #include "core/sampling/sampling.h"
 
 namespace sst {

@@ -1,11 +1,11 @@
 // The `pt` method's data crossing the host/GPU boundary (gpu/shaders/pt.comp and
 // gpu/path_trace_pass.h), defined once for C++ (namespace sst::glsl, static_asserts) and GLSL:
 // its push constants and the per-pixel sums it accumulates. The twin of the per-pixel state of
-// PathTracer::render (core/render/path_tracer.cpp).
-#ifndef SST_GPU_SHARED_PATH_TRACE_LAYOUT_H
-#define SST_GPU_SHARED_PATH_TRACE_LAYOUT_H
+// PathTracer::render (core/pt/path_tracer.cpp).
+#ifndef SST_CORE_PT_PATH_TRACE_LAYOUT_H
+#define SST_CORE_PT_PATH_TRACE_LAYOUT_H
 
-#include "frame_layout.h"
+#include "core/render/frame_layout.h"
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -52,4 +52,4 @@ static_assert(offsetof(PathTraceTexel, normal) == 48 && offsetof(PathTraceTexel,
 }  // namespace sst::glsl
 #endif
 
-#endif  // SST_GPU_SHARED_PATH_TRACE_LAYOUT_H
+#endif  // SST_CORE_PT_PATH_TRACE_LAYOUT_H

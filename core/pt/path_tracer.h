@@ -8,7 +8,7 @@
 // | rr_min_bounces   | 3       | bounces before Russian roulette starts (never, if >= max_bounces) |
 #pragma once
 #include "core/render/method.h"
-#include "core/render/surface.h"
+#include "core/shading/surface.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/util/params.h"
 
@@ -44,10 +44,8 @@ class PathTracer final : public Method {
  public:
   explicit PathTracer(const PathTracerParams& params);
   FrameOutput render(const RenderContext& context, StageTimer& timer) override;
-#ifdef SST_HAVE_VULKAN
-  FrameOutput render_vulkan(const RenderContext& context, StageTimer& timer) override;  // gpu/path_tracer_vulkan.cpp
-#endif
   nlohmann::json params() const override;
+  const PathTracerParams& tracer_params() const { return params_; }
 
  private:
   PathTracerParams params_;

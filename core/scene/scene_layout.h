@@ -3,7 +3,7 @@
 // static_asserts on size and offsets; in GLSL the same text declares plain structs for std430
 // buffers (include with GL_GOOGLE_include_directive). Packed from a sst::Scene by
 // gpu/scene_upload.h (pack_scene), read by gpu/shaders/surface.glsl, which computes on the GPU
-// exactly what core/render/surface.cpp computes on the CPU.
+// exactly what core/shading/surface.cpp computes on the CPU.
 //
 // Five std430 storage buffers (no vec3 arrays: every vec3 is followed by a 4-byte scalar, which
 // std430 packs into the vec3's 16-byte slot, exactly like the C++ layout). A shader declares them
@@ -17,8 +17,8 @@
 //                                    SceneTexture.texel_offset and .format).
 // An empty array is still bound as a small dummy buffer (Vulkan has no empty buffers); indices
 // into it are never produced.
-#ifndef SST_GPU_SHARED_SCENE_LAYOUT_H
-#define SST_GPU_SHARED_SCENE_LAYOUT_H
+#ifndef SST_CORE_SCENE_SCENE_LAYOUT_H
+#define SST_CORE_SCENE_SCENE_LAYOUT_H
 
 #ifdef __cplusplus
 #include <cstddef>
@@ -215,4 +215,4 @@ static_assert(offsetof(SceneTexture, reserved) == 28);
   layout(std430, binding = (first) + 4) readonly buffer SceneTexels { uint scene_texels[]; };
 #endif
 
-#endif  // SST_GPU_SHARED_SCENE_LAYOUT_H
+#endif  // SST_CORE_SCENE_SCENE_LAYOUT_H

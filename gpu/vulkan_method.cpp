@@ -1,0 +1,18 @@
+#include "gpu/vulkan_method.h"
+
+#include "core/manylight/many_light_method.h"
+#include "core/pt/path_tracer.h"
+#include "core/util/error.h"
+#include "gpu/many_light_method_vulkan.h"
+#include "gpu/path_tracer_vulkan.h"
+
+namespace sst::gpu {
+
+std::unique_ptr<VulkanMethod> make_vulkan_method(Method& method, const std::string& name) {
+  if (auto* pt = dynamic_cast<PathTracer*>(&method)) return std::make_unique<VulkanPathTracer>(*pt);
+  if (auto* many_light = dynamic_cast<ManyLightMethod*>(&method))
+    return std::make_unique<VulkanManyLightMethod>(*many_light);
+  throw Error("method '" + name + "' has no Vulkan port yet; use --backend cpu");
+}
+
+}  // namespace sst::gpu

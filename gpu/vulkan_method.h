@@ -1,0 +1,29 @@
+// The Vulkan side of a method: it renders the frame of the method's CPU object on the GPU, with the
+// same parameters, random numbers and outputs. Kept apart from the method's class, so that core
+// builds and tests without Vulkan; the pipeline (core/pipeline/renderer.cpp) creates one when the
+// backend is vulkan.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "core/render/frame.h"
+#include "core/render/method.h"
+#include "core/util/stage_timer.h"
+
+namespace sst::gpu {
+
+class GpuRenderContext;
+
+class VulkanMethod {
+ public:
+  virtual ~VulkanMethod() = default;
+  // `context` holds the frame's CPU-side inputs (scene, accel, lights, camera, options), `gpu` the
+  // device and the scene, BVH and lights uploaded to it.
+  virtual FrameOutput render(const RenderContext& context, const GpuRenderContext& gpu, StageTimer& timer) = 0;
+};
+
+// The Vulkan side of `method`, which it refers to and which must outlive it. Throws sst::Error
+// naming `name` when the method has no Vulkan port.
+std::unique_ptr<VulkanMethod> make_vulkan_method(Method& method, const std::string& name);
+
+}  // namespace sst::gpu

@@ -1,6 +1,6 @@
 #include "gpu/many_light_method_vulkan.h"
 
-#include "core/manylight/gpu_sampler_inputs.h"
+#include "core/manylight/sampler_inputs.h"
 #include "core/vpl/vpl_ply.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/light_tree_build_pass.h"
@@ -41,8 +41,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   sampler.prepare(mlf, timer, frame.method_counters);
   sampler.set_tree_builder({});
 
-  GpuSamplerInputs in;
-  sampler.gpu_inputs(mlf, in);
+  const SamplerInputs& in = sampler.inputs();
   auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<GpuManyLightInputs>(gpu.vulkan(), vpls, in); });
   auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu); });
   ManyLightPassOutput out = timer.time("sampling", [&] {

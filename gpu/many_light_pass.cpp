@@ -40,7 +40,7 @@ void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutp
 
 }  // namespace
 
-constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + glsl::kManyLightBufferCount + 2;
+constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + kManyLightBufferCount + 2;
 
 std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu) {
   return std::make_unique<ComputePipeline>(gpu.vulkan(), "many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)));

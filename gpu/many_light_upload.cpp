@@ -2,8 +2,8 @@
 
 namespace sst::gpu {
 
-std::vector<glsl::GpuVpl> pack_vpls(const VplSet& vpls) {
-  std::vector<glsl::GpuVpl> out(vpls.size());
+std::vector<GpuVpl> pack_vpls(const VplSet& vpls) {
+  std::vector<GpuVpl> out(vpls.size());
   for (size_t i = 0; i < vpls.size(); ++i) {
     out[i] = {};
     out[i].position = vpls[i].position;
@@ -15,16 +15,16 @@ std::vector<glsl::GpuVpl> pack_vpls(const VplSet& vpls) {
 
 
 GpuManyLightInputs::GpuManyLightInputs(const VulkanContext& context, const VplSet& vpls,
-                                       const GpuSamplerInputs& inputs)
+                                       const SamplerInputs& inputs)
     : params_(inputs.params) {
-  std::vector<glsl::GpuVpl> packed = pack_vpls(vpls);
+  std::vector<GpuVpl> packed = pack_vpls(vpls);
   params_.vpl_count = uint32_t(packed.size());
-  params_buffer_ = upload_buffer(context, std::span<const glsl::SamplerParams>(&params_, 1), "sampler parameters");
-  vpls_ = upload_buffer(context, std::span<const glsl::GpuVpl>(packed), "sampler VPLs");
+  params_buffer_ = upload_buffer(context, std::span<const SamplerParams>(&params_, 1), "sampler parameters");
+  vpls_ = upload_buffer(context, std::span<const GpuVpl>(packed), "sampler VPLs");
   nodes_ = upload_buffer(context, inputs.nodes, "sampler tree nodes");
   cut_nodes_ = upload_buffer(context, inputs.cut_nodes, "sampler cut nodes");
   cut_sizes_ = upload_buffer(context, inputs.cut_sizes, "sampler cut sizes");
-  guides_ = upload_buffer(context, std::span<const glsl::CutGuide>(inputs.guides), "sampler cut guides");
+  guides_ = upload_buffer(context, std::span<const CutGuide>(inputs.guides), "sampler cut guides");
   mock_cut_ = upload_buffer(context, inputs.mock_cut, "sampler mock cut");
 }
 

@@ -1,6 +1,6 @@
-// The many-light samplers' inputs on the GPU (issue 5): the VPLs and what a sampler's prepare()
-// built on the CPU (GpuSamplerInputs, core/manylight/gpu_sampler_inputs.h: the tree, the per-block
-// cuts and their guides, the mock cut, SamplerParams), uploaded into the storage buffers that
+// The many-light samplers' inputs on the GPU: the VPLs and what a sampler's prepare() built on
+// the CPU (SamplerInputs, core/manylight/sampler_inputs.h: the tree, the per-block cuts and their
+// guides, the mock cut, SamplerParams), uploaded into the storage buffers that
 // MANY_LIGHT_BUFFERS(first) declares (core/manylight/many_light_layout.h) for
 // gpu/shaders/indirect_sampler.glsl to read.
 #pragma once
@@ -8,14 +8,13 @@
 #include <memory>
 #include <vector>
 
-#include "core/manylight/gpu_sampler_inputs.h"
+#include "core/manylight/sampler_inputs.h"
 #include "core/vpl/vpl.h"
-#include "core/manylight/many_light_layout.h"
 
 namespace sst::gpu {
 
 // VPLs in GPU layout, index for index.
-std::vector<glsl::GpuVpl> pack_vpls(const VplSet& vpls);
+std::vector<GpuVpl> pack_vpls(const VplSet& vpls);
 
 }  // namespace sst::gpu
 
@@ -30,20 +29,20 @@ namespace sst::gpu {
 // it. A buffer beyond the device's storage-buffer limit is an sst::Error naming it (GpuBuffer).
 class GpuManyLightInputs {
  public:
-  static constexpr uint32_t kBufferCount = glsl::kManyLightBufferCount;
+  static constexpr uint32_t kBufferCount = kManyLightBufferCount;
 
-  GpuManyLightInputs(const VulkanContext& context, const VplSet& vpls, const GpuSamplerInputs& inputs);
+  GpuManyLightInputs(const VulkanContext& context, const VplSet& vpls, const SamplerInputs& inputs);
   GpuManyLightInputs(const GpuManyLightInputs&) = delete;
   GpuManyLightInputs& operator=(const GpuManyLightInputs&) = delete;
 
   // Bindings first .. first + 6 of a shader that declares MANY_LIGHT_BUFFERS(first).
   std::vector<const GpuBuffer*> buffers() const;
-  const glsl::SamplerParams& params() const { return params_; }
+  const SamplerParams& params() const { return params_; }
   // Device memory of the seven buffers, in bytes (as allocated).
   size_t bytes() const;
 
  private:
-  glsl::SamplerParams params_;
+  SamplerParams params_;
   std::unique_ptr<GpuBuffer> params_buffer_, vpls_, nodes_, cut_nodes_, cut_sizes_, guides_, mock_cut_;
 };
 

@@ -26,47 +26,12 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/lighttree/light_node.h"
 #include "core/math/math.h"
 #include "core/util/params.h"
 #include "core/vpl/vpl.h"
 
 namespace sst {
-
-inline constexpr uint32_t kNoNode = 0xffffffffu;
-
-// One node, leaf or internal. Plain data in a flat array, to be uploaded to the GPU as is: six
-// 16-byte rows (a vec3 and a 4-byte scalar each, which is also std430's layout of a vec3
-// followed by a scalar), 96 bytes, the size the SST paper reports, and no padding bytes, so two
-// trees can be compared with memcmp.
-struct LightNode {
-  static constexpr uint32_t kLeaf = 1u;      // no children; `left` is the VPL index
-  static constexpr uint32_t kSuitable = 2u;  // SST: v >= v_min and sigma_z <= sigma_max * D
-
-  vec3 bounds_lo;  // AABB of the subtree's VPL positions; empty (lo = +inf, hi = -inf) for no VPLs
-  uint32_t left;   // internal: first child's node index; leaf: VPL index, kNoNode for padding
-  vec3 bounds_hi;
-  uint32_t right;  // internal: second child's node index; leaf: kNoNode
-  vec3 intensity;  // sum of the subtree's VPL intensities (RGB, fp32: fp16 overflows at 65504)
-  uint32_t vpl_count;
-  vec3 mean;         // SST p: luminance-weighted mean position
-  float similarity;  // SST v = v1 v2 max(n1.n2, 0); 1 at leaves
-  vec3 normal;       // SST n: unit; defines the local frame basis_from_normal(normal)
-  float sigma_z;     // SST sqrt(variance.z); 0 at leaves
-  vec3 variance;     // SST s2 in the local frame (x, y on the tangent plane, z along normal)
-  uint32_t flags;
-
-  bool is_leaf() const { return (flags & kLeaf) != 0; }
-  bool suitable() const { return (flags & kSuitable) != 0; }
-  bool empty() const { return vpl_count == 0; }
-  Bounds3 bounds() const { return {bounds_lo, bounds_hi}; }
-  uint32_t vpl() const { return left; }  // leaves only
-};
-static_assert(sizeof(LightNode) == 96 && alignof(LightNode) == 4);
-static_assert(offsetof(LightNode, left) == 12 && offsetof(LightNode, bounds_hi) == 16 &&
-              offsetof(LightNode, intensity) == 32 && offsetof(LightNode, mean) == 48 &&
-              offsetof(LightNode, normal) == 64 && offsetof(LightNode, variance) == 80 &&
-              offsetof(LightNode, flags) == 92);
-static_assert(std::is_trivially_copyable_v<LightNode> && std::is_standard_layout_v<LightNode>);
 
 // Node index layout, by builder (`root`, `first_leaf` and `leaf_count` say it for any tree):
 // - radix, agglomerative: internal nodes [0, n-1), root 0; leaves [n-1, 2n-1). A single VPL

@@ -91,4 +91,18 @@ BlockCuts build_block_cuts(const RenderContext& ctx, const LightTree& tree, int 
   return cuts;
 }
 
+void set_cut_inputs(const BlockCuts& cuts, SamplerInputs& out) {
+  out.cut_nodes = cuts.nodes;
+  out.cut_sizes = cuts.sizes;
+  out.params.cut_block_size = uint32_t(cuts.grid.block_size);
+  out.params.cut_blocks_x = uint32_t(cuts.grid.blocks_x);
+  out.params.cut_blocks_y = uint32_t(cuts.grid.blocks_y);
+  out.params.cut_max_size = cuts.max_size;
+  out.guides.resize(cuts.guides.size());
+  for (size_t i = 0; i < cuts.guides.size(); ++i) {
+    const GBufferSample& g = cuts.guides[i];
+    out.guides[i] = {g.p, g.valid ? 1u : 0u, g.n, 0.0f};
+  }
+}
+
 }  // namespace sst

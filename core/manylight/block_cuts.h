@@ -67,6 +67,9 @@ struct BlockCuts {
 using GuidePixel = std::function<glm::ivec2(const BlockRect&)>;
 using GuidedError = std::function<float(const LightNode&, const GBufferSample&)>;
 using CutOrder = std::function<void(std::vector<uint32_t>&)>;
+// The cuts and their guides as the estimators read them (SamplerInputs).
+void set_cut_inputs(const BlockCuts& cuts, SamplerInputs& out);
+
 BlockCuts build_block_cuts(const RenderContext& ctx, const LightTree& tree, int block_size, uint32_t max_size,
                            const GuidePixel& guide_pixel, const GuidedError& error, const CutOrder& order = {});
 

@@ -25,12 +25,14 @@
 // | d_max      | 0.05    | similarity: maximum distance to a block centre's point, fraction of the scene diagonal |
 //
 // The thesis gives no values for n_min and d_max; 0.9 (~25 degrees) and 5% of the scene are ours.
+// The estimate and the expected contribution hybrid_weight are hybrid_estimate.h's.
 #pragma once
 #include <span>
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
+#include "core/manylight/hybrid_estimate.h"
 #include "core/manylight/indirect_sampler.h"
 #include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
@@ -60,27 +62,17 @@ struct HybridParams {
 };
 void validate(const HybridParams& params);  // sst::Error naming the bad parameter
 
-// The thesis's expected contribution of a node at x (normal n): lum(I) G_avg / max(d^2, c^2),
-// G_avg = mean over the 8 box corners of max(n . normalize(corner - x), 0), d = distance from x to
-// the box, c = the singularity clamp distance. 0 for an empty node.
-float hybrid_weight(const LightNode& node, vec3 x, vec3 n, float clamp_distance);
-
 class HybridSampler final : public TreeSamplerBase {
  public:
   explicit HybridSampler(const HybridParams& params);
-  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
-  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
-                            PixelSampler& sampler) const override;
-  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
-
   const BlockCuts& cuts() const { return cuts_; }
   std::span<const uint32_t> mock_cut() const { return mock_cut_; }
 
- private:
-  // One traversal from `from`; adds to `e`.
-  void traverse(const ManyLightFrame& frame, const ShadingPoint& point, uint32_t from, PixelSampler& sampler,
-                IndirectEstimate& e) const;
+ protected:
+  uint32_t method_id() const override { return ML_METHOD_HYBRID; }
+  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
+ private:
   HybridParams params_;
   BlockCuts cuts_;  // built at each block's centre pixel, each cut in leaf order
   std::vector<uint32_t> mock_cut_;

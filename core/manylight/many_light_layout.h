@@ -1,11 +1,9 @@
-// The many-light samplers' inputs as they cross the host/GPU boundary, defined once for
-// C++ (namespace sst::glsl, static_asserts) and GLSL: the VPLs, the light tree's nodes (the very
-// bytes of sst::LightNode, core/lighttree/light_tree.h), the per-block cuts of rtslc and the
-// hybrid with the G-buffer samples they were built for, the hybrid's mock cut, and one
-// SamplerParams saying which sampler runs and with what. The CPU builds all of it in
-// IndirectSampler::prepare and hands it over through IndirectSampler::gpu_inputs
-// (core/manylight/gpu_sampler_inputs.h); gpu/many_light_upload.h uploads it;
-// gpu/shaders/indirect_sampler.glsl reads it.
+// The many-light samplers' inputs, defined once for C++ (static_asserts) and GLSL: the VPLs, the
+// light tree's nodes (core/lighttree/light_node.h), the per-block cuts of rtslc and the hybrid
+// with the G-buffer samples they were built for, the hybrid's mock cut, and one SamplerParams
+// saying which sampler runs and with what. IndirectSampler::prepare builds all of it
+// (SamplerInputs, sampler_inputs.h); the estimators (indirect_estimate.h) read it on the CPU, and
+// gpu/many_light_upload.h uploads it for gpu/shaders/indirect_sampler.glsl.
 //
 // Buffers, std430, in the order of MANY_LIGHT_BUFFERS(first) (and GpuManyLightInputs::buffers()):
 //   first + 0  SamplerParams ml_params        one element
@@ -19,14 +17,10 @@
 #ifndef SST_CORE_MANYLIGHT_MANY_LIGHT_LAYOUT_H
 #define SST_CORE_MANYLIGHT_MANY_LIGHT_LAYOUT_H
 
-#ifdef __cplusplus
-#include <cstddef>
-#include <cstdint>
-#include <glm/glm.hpp>
-namespace sst::glsl {
-using uint = uint32_t;
-using glm::vec3;
-#endif
+#include "core/lighttree/light_node.h"
+#include "core/math/cpu_gpu.h"
+
+SST_BEGIN
 
 #define MANY_LIGHT_BUFFER_COUNT 7
 
@@ -42,11 +36,6 @@ using glm::vec3;
 #define ML_RTSLC_WEIGHTS_RTSLC 0u
 #define ML_RTSLC_WEIGHTS_SLC 1u
 
-// LightNode.flags (LightNode::kLeaf, LightNode::kSuitable) and "no node / no VPL" (kNoNode).
-#define ML_NODE_LEAF 1u
-#define ML_NODE_SUITABLE 2u
-#define ML_NO_NODE 0xFFFFFFFFu
-
 // One VPL (sst::Vpl), each vec3 padded to 16 bytes.
 struct GpuVpl {
   vec3 position;
@@ -55,24 +44,6 @@ struct GpuVpl {
   float pad1;
   vec3 intensity;
   float pad2;
-};
-
-// sst::LightNode field for field (see light_tree.h for the meaning of each): six rows of a vec3
-// and a 4-byte scalar, which std430 packs like the C++ struct. Leaves: left = VPL index
-// (ML_NO_NODE for padding), right = ML_NO_NODE.
-struct LightNode {
-  vec3 bounds_lo;
-  uint left;
-  vec3 bounds_hi;
-  uint right;
-  vec3 intensity;
-  uint vpl_count;
-  vec3 mean;
-  float similarity;
-  vec3 normal;
-  float sigma_z;
-  vec3 variance;
-  uint flags;
 };
 
 // The G-buffer sample a block's cut was built for (sst::GBufferSample, block_cuts.h).
@@ -88,7 +59,7 @@ struct SamplerParams {
   uint method;           // ML_METHOD_*
   uint vpl_count;        // ml_vpls[] length
   float clamp_distance;  // ManyLightFrame::clamp_distance
-  uint tree_root;        // LightTree::root (tree samplers); ML_NO_NODE for an empty tree
+  uint tree_root;        // LightTree::root (tree samplers); kNoNode for an empty tree
   uint tree_first_leaf;  // LightTree::first_leaf
   uint tree_node_count;  // ml_nodes[] length; 0: empty tree
   // sst: eps = distance_floor * LightTree::length_scale (the float product the CPU forms).
@@ -111,17 +82,14 @@ struct SamplerParams {
   uint pad0;
 };
 
+SST_END
+
 #ifdef __cplusplus
+#include <cstddef>
+namespace sst {
 static_assert(sizeof(GpuVpl) == 48);
 static_assert(offsetof(GpuVpl, position) == 0 && offsetof(GpuVpl, normal) == 16 &&
               offsetof(GpuVpl, intensity) == 32);
-static_assert(sizeof(LightNode) == 96);
-static_assert(offsetof(LightNode, left) == 12 && offsetof(LightNode, bounds_hi) == 16 &&
-              offsetof(LightNode, right) == 28 && offsetof(LightNode, intensity) == 32 &&
-              offsetof(LightNode, vpl_count) == 44 && offsetof(LightNode, mean) == 48 &&
-              offsetof(LightNode, similarity) == 60 && offsetof(LightNode, normal) == 64 &&
-              offsetof(LightNode, sigma_z) == 76 && offsetof(LightNode, variance) == 80 &&
-              offsetof(LightNode, flags) == 92);
 static_assert(sizeof(CutGuide) == 32);
 static_assert(offsetof(CutGuide, valid) == 12 && offsetof(CutGuide, n) == 16);
 static_assert(sizeof(SamplerParams) == 80);
@@ -129,7 +97,7 @@ static_assert(offsetof(SamplerParams, sst_eps) == 24 && offsetof(SamplerParams, 
               offsetof(SamplerParams, rtslc_interleave) == 48 && offsetof(SamplerParams, hybrid_cut_size) == 60 &&
               offsetof(SamplerParams, hybrid_mock_cut_size) == 72);
 inline constexpr uint32_t kManyLightBufferCount = MANY_LIGHT_BUFFER_COUNT;
-}  // namespace sst::glsl
+}  // namespace sst
 #else
 // Declares the seven many-light buffers, read-only, at bindings first .. first + 6 in the order
 // of the list at the top: the order of sst::gpu::GpuManyLightInputs::buffers().

@@ -73,7 +73,7 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
         ++rc.samples;
         vec3 value(0.0f);
         if (d.depth > 0.0f) {
-          IndirectEstimate e = sampler_->estimate(mlf, shading_point(hit, ray.direction, ctx.options.diffuse_only, x, y), sampler);
+          IndirectEstimate e = sampler_->estimate(shading_point(hit, ray.direction, ctx.options.diffuse_only, x, y), sampler);
           rc.shadow_rays += e.shadow_rays;
           nodes += e.nodes_visited;
           ++samples;

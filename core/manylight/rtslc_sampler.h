@@ -19,6 +19,7 @@
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
 #include "core/manylight/indirect_sampler.h"
+#include "core/manylight/rtslc_estimate.h"
 #include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
 
@@ -47,41 +48,29 @@ void validate(const RtslcParams& params);  // sst::Error naming the bad paramete
 // The traversal weights below a cut node (parameter `weights`). The cut-building error
 // (rtslc_cut_error) is the same for both.
 enum class RtslcWeights {
-  rtslc,  // rtslc_child_probability: the mean of the min- and max-distance weights
-  slc,    // P_0 = w_0 / (w_0 + w_1) with Yuksel 2019's slc_child_weights (slc_sampler.h)
+  rtslc,  // rtslc_child_probability (rtslc_estimate.h): the mean of the min- and max-distance weights
+  slc,    // P_0 = w_0 / (w_0 + w_1) with Yuksel 2019's slc_child_weights (slc_estimate.h)
 };
 // "rtslc" or "slc"; anything else is an sst::Error naming parameter 'weights' and the allowed values.
 RtslcWeights parse_rtslc_weights(const std::string& name);
 
-// P_0, the probability of descending into c0 rather than c1 at shading point x (normal n):
-// the mean of the weights with the minimum and the maximum distances (RTSLC). 0 for an empty c0;
-// 0 for both when neither can contribute (a dead branch).
-float rtslc_child_probability(const LightNode& c0, const LightNode& c1, vec3 x, vec3 n);
-
-struct TreeSample {
-  uint32_t node = kNoNode;  // the leaf reached; kNoNode: a dead branch
-  float probability = 0.0f;
-  uint32_t nodes_visited = 0;
-};
-// One stochastic descent from `from` to a leaf, choosing children with `weights`.
-TreeSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler,
-                          RtslcWeights weights = RtslcWeights::rtslc);
+// rtslc_traverse (rtslc_estimate.h) on `tree` alone, outside a frame: one stochastic descent
+// from `from` to a leaf with `weights`. For tests.
+RtslcSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler,
+                           RtslcWeights weights = RtslcWeights::rtslc);
 // The exact probability that rtslc_traverse from `from` (with the same `weights`) ends at `leaf`
 // (0 if not below it). Heap layout only (perfect tree).
 double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n,
                               RtslcWeights weights = RtslcWeights::rtslc);
-// The cut-building error of a node seen from x: lum(I) cosbound / max(dmin^2, min_distance^2).
-float rtslc_cut_error(const LightNode& node, vec3 x, vec3 n, float min_distance);
 
 class RtslcSampler final : public TreeSamplerBase {
  public:
   explicit RtslcSampler(const RtslcParams& params);
-  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
-  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point,
-                            PixelSampler& sampler) const override;
-  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
-
   const BlockCuts& cuts() const { return cuts_; }
+
+ protected:
+  uint32_t method_id() const override { return ML_METHOD_RTSLC; }
+  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:
   RtslcParams params_;

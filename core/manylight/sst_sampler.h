@@ -1,4 +1,5 @@
 // `sst`: stochastic substitute trees (Tatzgern et al. 2020, §4; METHODS.md §3). Biased by design.
+// The estimate is sst_estimate.h's (both backends); this is the method and its parameters.
 //
 // Per indirect sample:
 // 1. Lobe. A BRDF with a specular lobe picks the glossy lobe with probability
@@ -6,7 +7,7 @@
 //    against the diffuse albedo's luminance, clamped to [0.1, 0.9]; 1 for a pure metal), else
 //    the diffuse lobe; a diffuse-only BRDF always takes the diffuse lobe. The paper chooses "by
 //    the magnitude of the material terms" without a formula; this is one. Each lobe shades with
-//    its own part of the BRDF (diffuse + specular = the BRDF, brdf.cpp) divided by the lobe's
+//    its own part of the BRDF (diffuse + specular = the BRDF, brdf.h) divided by the lobe's
 //    probability, so the two lobes together estimate the whole BRDF.
 // 2. Walk from the root, child i with probability w_i / (w_1 + w_2), w = M * G * I:
 //    I = lum(node intensity); G = 1 / max(d^2, eps^2), d = distance from x to the node's box,
@@ -37,6 +38,7 @@
 // | substitutes | true    | stop the diffuse walk at suitable nodes (false: leaves only)   |
 #pragma once
 #include "core/manylight/slc_sampler.h"
+#include "core/manylight/sst_estimate.h"
 
 namespace sst {
 
@@ -67,26 +69,19 @@ struct SstMethodParams {
 
 enum class SstLobe { diffuse, glossy };
 
-// The weights of step 2 at `point` (whose brdf is the lobe's part of the BRDF); eps as above.
+// The weights of step 2 (sst_node_weight, sst_estimate.h) at `point`, whose brdf is the lobe's
+// part of the BRDF (sst_lobe_brdf); eps as above. For exact stop probabilities in tests.
 ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe);
-double sst_node_weight(const LightNode& node, const ShadingPoint& point, float eps, SstLobe lobe);
 // The stop rule of step 3 (leaves only for the glossy lobe or without substitutes).
 StopRule sst_stop_rule(SstLobe lobe, bool substitutes = true);
-
-// The part of `brdf` that `lobe` shades.
-Brdf lobe_brdf(const Brdf& brdf, SstLobe lobe);
-
-// A light position from the node's Gaussian, clamped into its box; `normals` are three
-// standard normal deviates.
-vec3 substitute_position(const LightNode& node, vec3 normals);
-// Three standard normal deviates from two 2D uniforms (Box-Muller).
-vec3 standard_normals(vec2 a, vec2 b);
 
 class SstSampler final : public TreeSamplerBase {
  public:
   SstSampler(LightTreeParams params, SstParams sst) : TreeSamplerBase(std::move(params)), sst_(sst) {}
-  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override;
-  void gpu_inputs(const ManyLightFrame& frame, GpuSamplerInputs& out) const override;
+
+ protected:
+  uint32_t method_id() const override { return ML_METHOD_SST; }
+  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:
   SstParams sst_;

@@ -4,7 +4,8 @@ namespace sst {
 
 TreeSamplerBase::TreeSamplerBase(LightTreeParams params) : tree_params_(std::move(params)) { validate(tree_params_); }
 
-void TreeSamplerBase::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
+void TreeSamplerBase::build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters,
+                            SamplerInputs& inputs) {
   LightTreeBuildStats stats;
   const Bounds3& scene_bounds = frame.context.scene.bounds;
   std::string built_on = "cpu";
@@ -24,6 +25,7 @@ void TreeSamplerBase::prepare(const ManyLightFrame& frame, StageTimer& timer, nl
                       {"hierarchy_ms", stats.hierarchy_ms},
                       {"merge_ms", stats.merge_ms},
                       {"total_ms", stats.total_ms}};
+  set_tree_inputs(tree_, inputs);
 }
 
 }  // namespace sst

@@ -10,11 +10,13 @@ namespace sst {
 class TreeSamplerBase : public IndirectSampler {
  public:
   explicit TreeSamplerBase(LightTreeParams tree_params);
-  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) override;
   void set_tree_builder(LightTreeBuildFn builder) override { builder_ = std::move(builder); }
   const LightTree& tree() const { return tree_; }
 
  protected:
+  // Builds the tree and sets its part of `inputs`; samplers with more to build call it first.
+  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
+
   LightTreeParams tree_params_;
   LightTree tree_;
 

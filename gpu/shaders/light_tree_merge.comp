@@ -33,7 +33,7 @@ void main() {
   uint vpl = ids[i];
   uint node = ltb.first_leaf + i;
   nodes[node] = make_leaf(vpls[vpl].position, vpls[vpl].normal, vpls[vpl].intensity, vpl, thresholds);
-  for (uint parent = parents[node]; parent != ML_NO_NODE; parent = parents[parent]) {
+  for (uint parent = parents[node]; parent != kNoNode; parent = parents[parent]) {
     // Publish this subtree before arriving; the second arrival sees both children.
     memoryBarrierBuffer();
     if (atomicAdd(visits[parent], 1u) == 0u) return;

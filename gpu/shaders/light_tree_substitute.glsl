@@ -14,7 +14,7 @@ struct SubstituteThresholds {
 };
 
 uint substitute_suitability(float v, float sigma_z, SubstituteThresholds t) {
-  return (v >= t.v_min && sigma_z <= t.sigma_max_abs) ? ML_NODE_SUITABLE : 0u;
+  return (v >= t.v_min && sigma_z <= t.sigma_max_abs) ? kLightNodeSuitable : 0u;
 }
 
 // glm::min / glm::max: (y < x) ? y : x and (x < y) ? y : x per component.
@@ -30,7 +30,7 @@ LightNode make_leaf(vec3 position, vec3 normal, vec3 intensity, uint vpl_index, 
   leaf.bounds_lo = position;
   leaf.bounds_hi = position;
   leaf.left = vpl_index;
-  leaf.right = ML_NO_NODE;
+  leaf.right = kNoNode;
   leaf.intensity = intensity;
   leaf.vpl_count = 1u;
   leaf.mean = position;
@@ -40,7 +40,7 @@ LightNode make_leaf(vec3 position, vec3 normal, vec3 intensity, uint vpl_index, 
   leaf.normal = unit;
   leaf.sigma_z = 0.0;
   leaf.variance = vec3(0.0);
-  leaf.flags = ML_NODE_LEAF | substitute_suitability(1.0, 0.0, t);
+  leaf.flags = kLightNodeLeaf | substitute_suitability(1.0, 0.0, t);
   return leaf;
 }
 
@@ -48,8 +48,8 @@ LightNode make_padding_leaf(SubstituteThresholds t) {
   LightNode leaf;
   leaf.bounds_lo = vec3(kInf);
   leaf.bounds_hi = vec3(-kInf);
-  leaf.left = ML_NO_NODE;
-  leaf.right = ML_NO_NODE;
+  leaf.left = kNoNode;
+  leaf.right = kNoNode;
   leaf.intensity = vec3(0.0);
   leaf.vpl_count = 0u;
   leaf.mean = vec3(0.0);
@@ -57,7 +57,7 @@ LightNode make_padding_leaf(SubstituteThresholds t) {
   leaf.normal = vec3(0.0, 0.0, 1.0);
   leaf.sigma_z = 0.0;
   leaf.variance = vec3(0.0);
-  leaf.flags = ML_NODE_LEAF | substitute_suitability(1.0, 0.0, t);
+  leaf.flags = kLightNodeLeaf | substitute_suitability(1.0, 0.0, t);
   return leaf;
 }
 

@@ -1,6 +1,6 @@
 // The GPU indirect samplers (gpu/shaders/indirect_sampler.glsl) against the CPU's
 // IndirectSampler::estimate, on the same inputs: the Cornell box, one VPL set, each sampler's
-// prepare() run on the CPU and handed over through gpu_inputs, the shading points of the CPU's
+// prepare() run on the CPU and its inputs() uploaded, the shading points of the CPU's
 // camera hits (one sample per pixel), and each pixel sampler continued on the GPU from where the
 // CPU's ManyLightMethod hands it to estimate(). Per point, the GPU must draw the same random sets,
 // visit the same nodes and trace the same shadow rays, and its value must equal the CPU's to float
@@ -17,7 +17,7 @@
 
 #include "core/accel/flat_bvh.h"
 #include "core/manylight/exhaustive_sampler.h"
-#include "core/manylight/gpu_sampler_inputs.h"
+#include "core/manylight/sampler_inputs.h"
 #include "core/manylight/hybrid_sampler.h"
 #include "core/manylight/rtslc_sampler.h"
 #include "core/manylight/slc_sampler.h"
@@ -175,7 +175,7 @@ std::vector<IndirectTestPoint> pack_points(const TestFrame& f) {
   return out;
 }
 
-std::vector<IndirectTestResult> run_gpu(const TestFrame& f, const GpuSamplerInputs& inputs) {
+std::vector<IndirectTestResult> run_gpu(const TestFrame& f, const SamplerInputs& inputs) {
   const VulkanContext& context = vulkan();
   GpuManyLightInputs ml(context, f.vpls, inputs);
   GpuBvh bvh(context, f.bvh);
@@ -292,7 +292,7 @@ Agreement compare_with_cpu(const TestFrame& f, const IndirectSampler& sampler, c
   double sum_abs = 0.0, sum_sq_diff = 0.0;
   for (size_t i = 0; i < a.points; ++i) {
     PixelSampler s = f.samplers[i];
-    IndirectEstimate e = sampler.estimate(mlf, f.points[i], s);
+    IndirectEstimate e = sampler.estimate(f.points[i], s);
     const IndirectTestResult& g = gpu[i];
     a.sets_differ += g.sets_used != s.sets_used;
     a.nodes_differ += g.nodes_visited != e.nodes_visited;
@@ -331,9 +331,7 @@ TEST_P(GpuIndirectSampler, EqualsTheCpuEstimatePerShadingPoint) {
   StageTimer timer;
   nlohmann::json counters;
   sampler->prepare(mlf, timer, counters);
-  GpuSamplerInputs inputs;
-  sampler->gpu_inputs(mlf, inputs);
-  Agreement a = compare_with_cpu(f, *sampler, mlf, run_gpu(f, inputs));
+  Agreement a = compare_with_cpu(f, *sampler, mlf, run_gpu(f, sampler->inputs()));
   std::printf(
       "%-20s %zu points (%zu lit), %.2f nodes and %.2f shadow rays per point: differ in sets %zu, nodes %zu, "
       "shadow rays %zu, value %zu (others within %.1e relative); RMSE / mean %.2e\n",

@@ -136,22 +136,26 @@ TEST(Sweep, CalibratedSppIsClampedToItsRange) {
 class SwappedWeightsSlc final : public TreeSamplerBase {
  public:
   using TreeSamplerBase::TreeSamplerBase;
-  IndirectEstimate estimate(const ManyLightFrame& frame, const ShadingPoint& point, PixelSampler& sampler) const override {
+  IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
     IndirectEstimate e;
     uint32_t i = tree_.root;
     double p = 1.0;
     while (!tree_[i].is_leaf()) {
-      auto w = slc_child_weights(tree_[tree_[i].left], tree_[tree_[i].right], point);
-      double sum = w[0] + w[1];
+      vec2 w = slc_child_weights(tree_[tree_[i].left], tree_[tree_[i].right], point.p, point.basis.n);
+      double sum = double(w.x) + double(w.y);
       if (!(sum > 0.0)) return e;
-      bool left = pixel_sampler_get1d(sampler) < w[1] / sum;  // the bug: the sibling's probability
-      p *= (left ? w[0] : w[1]) / sum;
+      bool left = pixel_sampler_get1d(sampler) < w.y / sum;  // the bug: the sibling's probability
+      p *= (left ? w.x : w.y) / sum;
       i = left ? tree_[i].left : tree_[i].right;
     }
     uint32_t vpl = tree_[i].vpl();
-    if (vpl < frame.vpls.size()) e.value = divide_by_probability(shade_vpl(frame, point, frame.vpls[vpl], &e.shadow_rays), p);
+    if (vpl < inputs().vpls.size())
+      e.value = divide_by_probability(shade_vpl(inputs(), point, inputs().vpls[vpl], e.shadow_rays), tree_probability(float(p)));
     return e;
   }
+
+ protected:
+  uint32_t method_id() const override { return ML_METHOD_SLC; }
 };
 
 TEST(Sweep, MetricsCheckPassesOnCleanCodeAndFailsOnSwappedWeights) {

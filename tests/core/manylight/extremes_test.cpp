@@ -295,7 +295,7 @@ TEST_P(ExtremesVplSet, ExhaustiveAndUniformContributionsFinite) {
     // Uniform: one VPL / (1/N).
     ASSERT_TRUE(is_finite(divide_by_probability(vpl_contribution(vpls.back(), sp.p, sp.ng, sp.basis, sp.brdf, sp.wo,
                                                                  kClamp),
-                                                1.0 / double(vpls.size()))));
+                                                tree_probability(float(1.0 / double(vpls.size()))))));
   }
 }
 
@@ -310,11 +310,12 @@ TEST_P(ExtremesVplSet, SlcSamplesFinite) {
     HashRng rng = hash_rng(3, 0, 0);
     for (const ShadingPoint& sp : shading_points(vpls))
       for (int s = 0; s < 16; ++s) {
-        TreeTraversal t = traverse_tree(tree, slc_weights(sp), stop_at_leaves, [&] { return hash_rng_next(rng); });
+        PixelSampler walk_ps = pixel_sampler(hash_rng_next_bits(rng), 0u, 0u);
+        TreeWalk t = walk_tree(tree, slc_weights(sp), stop_at_leaves, walk_ps);
         if (t.node == kNoNode) continue;
         ASSERT_TRUE(tree[t.node].is_leaf());
-        ASSERT_GT(t.probability, 0.0);
-        ASSERT_TRUE(std::isfinite(t.probability));
+        ASSERT_GT(probability_value(t.probability), 0.0);
+        ASSERT_TRUE(std::isfinite(probability_value(t.probability)));
         vec3 c = vpl_contribution(vpls[tree[t.node].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kClamp);
         ASSERT_TRUE(is_finite(divide_by_probability(c, t.probability)));
       }
@@ -336,19 +337,19 @@ TEST_P(ExtremesVplSet, SstSamplesFinite) {
           for (int s = 0; s < 8; ++s) {
             ShadingPoint sp = sp0;
             SstLobe lobe = sp.brdf.specular ? SstLobe::glossy : SstLobe::diffuse;
-            sp.brdf = lobe_brdf(sp.brdf, lobe);
-            TreeTraversal t =
-                traverse_tree(tree, sst_weights(sp, eps, lobe), sst_stop_rule(lobe), [&] { return hash_rng_next(rng); });
+            sp.brdf = sst_lobe_brdf(sp.brdf, lobe == SstLobe::glossy);
+            PixelSampler walk_ps = pixel_sampler(hash_rng_next_bits(rng), 0u, 0u);
+        TreeWalk t = walk_tree(tree, sst_weights(sp, eps, lobe), sst_stop_rule(lobe), walk_ps);
             if (t.node == kNoNode) continue;
-            ASSERT_GT(t.probability, 0.0);
-            ASSERT_TRUE(std::isfinite(t.probability));
+            ASSERT_GT(probability_value(t.probability), 0.0);
+            ASSERT_TRUE(std::isfinite(probability_value(t.probability)));
             const LightNode& node = tree[t.node];
             Vpl vpl;
             if (node.is_leaf()) {
               vpl = vpls[node.vpl()];
             } else {
-              vec3 normals = standard_normals(vec2(hash_rng_next(rng), hash_rng_next(rng)), vec2(hash_rng_next(rng), hash_rng_next(rng)));
-              vpl = Vpl{substitute_position(node, normals), node.normal, node.intensity};
+              vec3 normals = sst_standard_normals(vec2(hash_rng_next(rng), hash_rng_next(rng)), vec2(hash_rng_next(rng), hash_rng_next(rng)));
+              vpl = Vpl{sst_substitute_position(node, normals), node.normal, node.intensity};
               ASSERT_TRUE(is_finite(vpl.position));
               ASSERT_TRUE(is_finite(vpl.normal));
             }
@@ -376,13 +377,13 @@ TEST_P(ExtremesVplSet, RtslcCutsAndTraversalsFinite) {
         ASSERT_TRUE(std::isfinite(rtslc_cut_error(tree[from], x, n, kClamp)));
         for (uint32_t i = 0; i < 4; ++i) {
           PixelSampler sampler = pixel_sampler(11, from, i);
-          TreeSample s = rtslc_traverse(tree, from, x, n, sampler);
+          RtslcSample s = rtslc_traverse(tree, from, x, n, sampler);
           if (s.node == kNoNode) continue;
           ASSERT_TRUE(tree[s.node].is_leaf());
           ASSERT_GT(s.probability, 0.0f);
           ASSERT_TRUE(std::isfinite(s.probability));
           vec3 c = vpl_contribution(vpls[tree[s.node].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kClamp);
-          ASSERT_TRUE(is_finite(divide_by_probability(c, s.probability)));
+          ASSERT_TRUE(is_finite(divide_by_probability(c, tree_probability(s.probability))));
         }
       }
     }

@@ -6,9 +6,15 @@
 #include <cmath>
 #include <string>
 
+#include "core/lighttree/light_tree.h"
 #include "core/pipeline/renderer.h"
 
 namespace sst::test {
+
+// Relative tolerance of a tree walk's float probability against the exact one computed in double
+// from the same float weights: per level, the weights' sum, the division and the product each
+// round once (2^-24 relative).
+inline double walk_tolerance(const LightTree& tree) { return double(tree_height(tree) + 1) * 3.0 * 0x1p-24; }
 
 // A small diffuse-only render of `method`, seed 3: renders with the same options jitter their
 // camera rays identically, so an exhaustive render is the pixel-wise expectation of a sampler's.

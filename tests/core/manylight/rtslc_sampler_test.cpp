@@ -60,7 +60,7 @@ std::vector<double> check_leaf_probabilities(const LightTree& tree, uint32_t fro
   std::vector<double> observed(hi - lo, 0.0);
   for (int i = 0; i < samples; ++i) {
     PixelSampler sampler = pixel_sampler(seed, from, uint32_t(i));
-    TreeSample s = rtslc_traverse(tree, from, x, n, sampler, weights);
+    RtslcSample s = rtslc_traverse(tree, from, x, n, sampler, weights);
     if (s.node == kNoNode || s.node < lo || s.node >= hi) {
       ADD_FAILURE() << "traversal from " << from << " ended at " << s.node;
       return expected;
@@ -109,10 +109,10 @@ TEST(RtslcTraversal, SlcWeightsLeafProbabilitiesSumToOneAndMatchFrequencies) {
     for (uint32_t from : {tree.root, 2u, 3u, 6u}) {
       std::vector<double> p = check_leaf_probabilities(tree, from, x, n, RtslcWeights::slc, 13);
       // The weights are Yuksel's (slc_child_weights): at the start node P_0 = w_0 / (w_0 + w_1).
-      std::array<double, 2> w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, n);
+      vec2 w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, n);
       double left = 0.0;
       for (size_t l = 0; l < p.size() / 2; ++l) left += p[l];
-      EXPECT_NEAR(left, w[0] / (w[0] + w[1]), 1e-5) << "from " << from;
+      EXPECT_NEAR(left, double(w.x) / (double(w.x) + double(w.y)), 1e-5) << "from " << from;
     }
   }
 }
@@ -128,7 +128,7 @@ TEST(RtslcTraversal, SlcWeightsDeadBranchHasProbabilityZero) {
     EXPECT_EQ(sum, 0.0) << "from " << from;
     for (int i = 0; i < 100; ++i) {
       PixelSampler sampler = pixel_sampler(13, from, uint32_t(i));
-      TreeSample s = rtslc_traverse(tree, from, x, n, sampler, RtslcWeights::slc);
+      RtslcSample s = rtslc_traverse(tree, from, x, n, sampler, RtslcWeights::slc);
       EXPECT_EQ(s.node, kNoNode);
       EXPECT_EQ(s.probability, 0.0f);
     }

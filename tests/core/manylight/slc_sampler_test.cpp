@@ -61,14 +61,14 @@ void check_frequencies(const LightTree& tree, const ChildWeights& weights, const
   }
   expected[n] = std::max(0.0, 1.0 - sum) * draws;
   for (int s = 0; s < draws; ++s) {
-    HashRng rng = hash_rng(7, 0, uint32_t(s));
-    TreeTraversal t = traverse_tree(tree, weights, stop, [&] { return hash_rng_next(rng); });
+    PixelSampler walk_ps = pixel_sampler(7, 0, uint32_t(s));
+    TreeWalk t = walk_tree(tree, weights, stop, walk_ps);
     if (t.node == kNoNode) {
       observed[n] += 1.0;
       continue;
     }
     ASSERT_GT(probabilities[t.node], 0.0) << "drew node " << t.node << " of probability 0";
-    ASSERT_NEAR(t.probability, probabilities[t.node], 1e-9 * probabilities[t.node]);
+    ASSERT_NEAR(probability_value(t.probability), probabilities[t.node], test::walk_tolerance(tree) * probabilities[t.node]);
     observed[t.node] += 1.0;
   }
   int dof = 0;
@@ -178,16 +178,27 @@ TEST(SlcSampler, DeadBranchAndSingleLeaf) {
   // Every VPL far below the tangent plane: the root's children both weigh 0.
   VplSet below = {{vec3(0, 0, -5), vec3(0, 0, 1), vec3(1)}, {vec3(1, 0, -5), vec3(0, 0, 1), vec3(1)}};
   LightTree tree = build_light_tree(below, {});
-  TreeTraversal t = traverse_tree(tree, slc_weights(sp), stop_at_leaves, [] { return 0.5f; });
+  PixelSampler ps = pixel_sampler(1, 0, 0);
+  TreeWalk t = walk_tree(tree, slc_weights(sp), stop_at_leaves, ps);
   EXPECT_EQ(t.node, kNoNode);
-  EXPECT_EQ(t.probability, 0.0);
+  EXPECT_EQ(probability_value(t.probability), 0.0);
   LightTree one = build_light_tree({below[0]}, {});
-  t = traverse_tree(one, slc_weights(sp), stop_at_leaves, [] { return 0.5f; });
+  t = walk_tree(one, slc_weights(sp), stop_at_leaves, ps);
   EXPECT_EQ(t.node, one.root);
-  EXPECT_EQ(t.probability, 1.0);
+  EXPECT_EQ(probability_value(t.probability), 1.0);
   EXPECT_EQ(t.nodes_visited, 1u);
-  EXPECT_EQ(divide_by_probability(vec3(1.0f), 0.0), vec3(0.0f));
-  EXPECT_EQ(divide_by_probability(vec3(1.0f), 1e-300), vec3(0.0f));  // overflow: 0, not inf
+  EXPECT_EQ(divide_by_probability(vec3(1.0f), tree_probability(0.0f)), vec3(0.0f));
+  TreeProbability tiny = tree_probability(1.0f);
+  tiny.e = -1000;  // 2^-1000, far below float's range
+  EXPECT_EQ(divide_by_probability(vec3(1.0f), tiny), vec3(0.0f));  // overflow: 0, not inf
+  // The walk keeps P far below float's range exact: 0.5^200 stays 2^-200, so a tiny contribution
+  // divided by it is the right finite value, and 1 / P (beyond float's range) is 0, not inf.
+  TreeProbability deep = tree_probability(1.0f);
+  for (int level = 0; level < 200; ++level) deep = tree_probability_times(deep, 0.5f);
+  EXPECT_EQ(probability_value(deep), std::ldexp(1.0, -200));
+  EXPECT_EQ(divide_by_probability(vec3(1e-30f), deep), vec3(std::ldexp(1e-30f, 200)));
+  EXPECT_EQ(divide_by_probability(vec3(1.0f), deep), vec3(0.0f));
+  EXPECT_EQ(divide_by_probability(vec3(0x1p-100f), tree_probability(0x1p-100f)), vec3(1.0f));
 }
 
 TEST(SlcSampler, ConvergesToExhaustiveOnTheSameVpls) {

@@ -70,14 +70,14 @@ double check_distribution(const LightTree& tree, const ChildWeights& weights, co
   for (size_t i = 0; i < n; ++i) expected[i] = p[i] * draws;
   expected[n] = std::max(0.0, 1.0 - sum) * draws;
   for (int s = 0; s < draws; ++s) {
-    HashRng rng = hash_rng(9, 1, uint32_t(s));
-    TreeTraversal t = traverse_tree(tree, weights, stop, [&] { return hash_rng_next(rng); });
+    PixelSampler walk_ps = pixel_sampler(9, 1, uint32_t(s));
+    TreeWalk t = walk_tree(tree, weights, stop, walk_ps);
     if (t.node == kNoNode) {
       observed[n] += 1.0;
       continue;
     }
     EXPECT_GT(p[t.node], 0.0);
-    EXPECT_NEAR(t.probability, p[t.node], 1e-9 * p[t.node]);
+    EXPECT_NEAR(probability_value(t.probability), p[t.node], test::walk_tolerance(tree) * p[t.node]);
     observed[t.node] += 1.0;
   }
   int dof = 0;
@@ -125,7 +125,7 @@ TEST(SstSampler, GlossyWalkReachesLeavesWithMatchingFrequencies) {
   LightTree tree = build_light_tree(corner_vpls(50, 3), {});
   ShadingPoint sp = point_at(vec3(0.6f, 0.5f, 0.4f), vec3(-1.0f, 0.0f, -1.0f), true);
   ASSERT_TRUE(sp.brdf.specular);
-  sp.brdf = lobe_brdf(sp.brdf, SstLobe::glossy);
+  sp.brdf = sst_lobe_brdf(sp.brdf, true);
   int internal = 0;
   double sum = check_distribution(tree, sst_weights(sp, kEps, SstLobe::glossy), sst_stop_rule(SstLobe::glossy),
                                   100000, &internal);
@@ -145,7 +145,7 @@ TEST(SstSampler, EveryContributingVplIsReachableWithoutSubstitutes) {
       vec3 n = glm::normalize(2.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 1.0f);
       SstLobe lobe = k % 2 ? SstLobe::glossy : SstLobe::diffuse;
       ShadingPoint sp = point_at(x, n, lobe == SstLobe::glossy);
-      sp.brdf = lobe_brdf(sp.brdf, lobe);
+      sp.brdf = sst_lobe_brdf(sp.brdf, lobe == SstLobe::glossy);
       std::vector<double> p = stop_probabilities(tree, sst_weights(sp, kEps, lobe), sst_stop_rule(lobe, false));
       for (uint32_t i = tree.first_leaf; i < tree.first_leaf + tree.leaf_count; ++i) {
         vec3 c = vpl_contribution(vpls[tree[i].vpl()], sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kEps);
@@ -164,26 +164,27 @@ void expect_finite_samples(const VplSet& vpls, const LightTreeParams& params) {
     vec3 x = 3.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 1.0f;
     ShadingPoint sp = point_at(x, random_unit(rng), s % 2 == 1);
     SstLobe lobe = s % 2 == 1 ? SstLobe::glossy : SstLobe::diffuse;
-    sp.brdf = lobe_brdf(sp.brdf, lobe);
-    TreeTraversal t = traverse_tree(tree, sst_weights(sp, kEps, lobe), sst_stop_rule(lobe), [&] { return hash_rng_next(rng); });
+    sp.brdf = sst_lobe_brdf(sp.brdf, lobe == SstLobe::glossy);
+    PixelSampler walk_ps = pixel_sampler(hash_rng_next_bits(rng), 0u, 0u);
+        TreeWalk t = walk_tree(tree, sst_weights(sp, kEps, lobe), sst_stop_rule(lobe), walk_ps);
     if (t.node == kNoNode) continue;
     const LightNode& node = tree[t.node];
     Vpl vpl = vpls[0];
     if (node.is_leaf()) {
       vpl = vpls[node.vpl()];
     } else {
-      vec3 normals = standard_normals(vec2(hash_rng_next(rng), hash_rng_next(rng)), vec2(hash_rng_next(rng), hash_rng_next(rng)));
-      vpl = Vpl{substitute_position(node, normals), node.normal, node.intensity};
+      vec3 normals = sst_standard_normals(vec2(hash_rng_next(rng), hash_rng_next(rng)), vec2(hash_rng_next(rng), hash_rng_next(rng)));
+      vpl = Vpl{sst_substitute_position(node, normals), node.normal, node.intensity};
       ASSERT_TRUE(is_finite(vpl.position));
       ASSERT_TRUE(glm::all(glm::greaterThanEqual(vpl.position, node.bounds_lo)) &&
                   glm::all(glm::lessThanEqual(vpl.position, node.bounds_hi)));
     }
     vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, kEps);
     ASSERT_TRUE(is_finite(divide_by_probability(c, t.probability)));
-    ASSERT_GT(t.probability, 0.0);
+    ASSERT_GT(probability_value(t.probability), 0.0);
   }
   // Extreme deviates (u -> 1 gives the largest) stay finite too.
-  EXPECT_TRUE(is_finite(standard_normals(vec2(0.99999994f, 0.25f), vec2(0.0f, 0.0f))));
+  EXPECT_TRUE(is_finite(sst_standard_normals(vec2(0.99999994f, 0.25f), vec2(0.0f, 0.0f))));
 }
 
 TEST(SstSampler, ExtremeParametersAndVplSetsGiveFiniteSamples) {

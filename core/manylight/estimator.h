@@ -1,0 +1,132 @@
+// What every indirect estimator (exhaustive, uniform, slc, sst, rtslc, hybrid) shares, written
+// once for both backends (shared C++/GLSL source): the shading point, the estimate, one VPL shaded
+// with visibility, and the walk probability of the tree samplers.
+//
+// A kernel reads the sampler's inputs (many_light_layout.h) only through these hooks; C++ defines
+// them in sampler_inputs.h, a shader before including this file (gpu/shaders/indirect_sampler.glsl):
+//   ML_CTX_PARAM, ML_CTX       the leading parameter and argument of every kernel function that
+//                              reads the inputs (C++: `const SamplerInputs& ml,`; GLSL: empty)
+//   ML_PARAMS                  the SamplerParams
+//   ML_NODE(i)                 LightNode i of the tree
+//   ML_VPL(j)                  Vpl j
+//   ML_CUT_NODE(i), ML_CUT_SIZE(b), ML_CUT_GUIDE(b), ML_MOCK_CUT(j)   the per-block cuts
+//   ML_OCCLUDED(x, ng, p, n)   whether the shadow ray from x (geometric normal ng, on the VPL's
+//                              side) to a VPL at p with normal n is blocked
+//   ML_COUNT_ITERATION()       once per iteration of a loop over VPLs (lavapipe's loop budget)
+#ifndef SST_CORE_MANYLIGHT_ESTIMATOR_H
+#define SST_CORE_MANYLIGHT_ESTIMATOR_H
+#include "core/lighttree/light_node.h"
+#include "core/manylight/many_light_layout.h"
+#include "core/material/brdf.h"
+#include "core/rng/sobol_sampler.h"
+#include "core/vpl/vpl_shading.h"
+#ifdef __cplusplus
+#include "core/manylight/sampler_inputs.h"
+#endif
+
+SST_BEGIN
+
+// A camera ray's first hit, ready to shade.
+struct ShadingPoint {
+  vec3 p SST_DEFAULT(vec3(0.0f));
+  vec3 ng SST_DEFAULT(vec3(0.0f));  // geometric normal on the viewer's side
+  Basis basis;                      // shading basis (basis.n = shading normal)
+  vec3 wo SST_DEFAULT(vec3(0.0f));  // toward the viewer, in the shading basis
+  Brdf brdf;
+  int x SST_DEFAULT(0);  // pixel
+  int y SST_DEFAULT(0);
+};
+
+struct IndirectEstimate {
+  vec3 value SST_DEFAULT(vec3(0.0f));  // an estimate of sum_j contribution_j * visibility_j
+  uint nodes_visited SST_DEFAULT(0u);  // tree nodes visited to draw the sample(s)
+  uint shadow_rays SST_DEFAULT(0u);
+};
+
+SST_FUNC IndirectEstimate indirect_estimate_zero() {
+  IndirectEstimate e;
+  e.value = vec3(0.0f);
+  e.nodes_visited = 0u;
+  e.shadow_rays = 0u;
+  return e;
+}
+
+// One VPL's contribution at sp, with visibility: the shadow ray is traced (and counted) only when
+// the unshadowed contribution is non-zero.
+SST_FUNC vec3 shade_vpl(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_IN(Vpl) vpl, SST_INOUT(uint) shadow_rays) {
+  vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, ML_PARAMS.clamp_distance);
+  if (max_component(c) <= 0.0f) return vec3(0.0f);
+  shadow_rays += 1u;
+  if (ML_OCCLUDED(sp.p, sp.ng, vpl.position, vpl.normal)) return vec3(0.0f);
+  return c;
+}
+
+// The probability of a walk down a light tree, a product of up to tree-height factors, as a float
+// mantissa m and a power-of-two exponent e (m renormalised whenever it falls below 2^-64), so that
+// it never underflows: c / P stays finite wherever its true value is.
+struct TreeProbability {
+  float m;
+  int e;
+};
+
+SST_FUNC TreeProbability tree_probability(float m) {
+  TreeProbability p;
+  p.m = m;
+  p.e = 0;
+  return p;
+}
+
+SST_FUNC TreeProbability tree_probability_times(TreeProbability p, float factor) {
+  SST_PRECISE float m = p.m * factor;
+  p.m = m;
+  if (p.m > 0.0f && p.m < 5.42101086e-20f) {  // 2^-64
+    p.m = ldexp(p.m, 64);                     // exact
+    p.e -= 64;
+  }
+  return p;
+}
+
+// c / P; 0 for P <= 0, c <= 0, or a result outside float's range (never a NaN in the image).
+SST_FUNC vec3 divide_by_probability(vec3 c, TreeProbability p) {
+  if (!(p.m > 0.0f) || max_component(c) <= 0.0f) return vec3(0.0f);
+  SST_PRECISE vec3 q = c / p.m;
+  // ldexp saturates to +inf (overflow) or 0 (underflow).
+  vec3 v = vec3(ldexp(q.x, -p.e), ldexp(q.y, -p.e), ldexp(q.z, -p.e));
+  return is_finite3(v) ? v : vec3(0.0f);
+}
+
+// A walk from the root down a light tree: one tree_walk_step per internal node, the node's child
+// weights computed by the method.
+struct TreeWalk {
+  uint node;  // where the walk is; kNoNode: a dead branch
+  TreeProbability probability;
+  uint nodes_visited;  // nodes whose weights were evaluated, the stop node included
+};
+
+SST_FUNC TreeWalk tree_walk_begin(uint root) {
+  TreeWalk w;
+  w.node = root;
+  w.probability = tree_probability(root == kNoNode ? 0.0f : 1.0f);
+  w.nodes_visited = 0u;
+  return w;
+}
+
+// At internal node `node` with child weights w: child i with probability w_i / (w_0 + w_1). A child
+// of weight 0 is never taken, and no uniform is drawn unless both can be. A dead branch (a zero or
+// non-finite sum) ends the walk with node = kNoNode: the sample is wasted.
+SST_FUNC void tree_walk_step(SST_INOUT(TreeWalk) walk, SST_IN(LightNode) node, vec2 w, SST_INOUT(PixelSampler) ps) {
+  float sum = w.x + w.y;
+  if (!(sum > 0.0f) || !is_finite(sum)) {
+    walk.node = kNoNode;
+    walk.probability = tree_probability(0.0f);
+    return;
+  }
+  float p_left = w.x / sum;
+  bool left = w.y <= 0.0f || (w.x > 0.0f && pixel_sampler_get1d(ps) < p_left);
+  walk.probability = tree_probability_times(walk.probability, left ? p_left : w.y / sum);
+  walk.node = left ? node.left : node.right;
+}
+
+SST_END
+
+#endif  // SST_CORE_MANYLIGHT_ESTIMATOR_H

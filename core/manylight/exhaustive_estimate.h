@@ -1,0 +1,28 @@
+// `exhaustive`, the estimate at one shading point (shared C++/GLSL source): every VPL with its
+// shadow ray, summed in VPL order. Deterministic given the shading point; the VPL ground truth
+// the unbiased samplers converge to (METHODS.md section 3).
+#ifndef SST_CORE_MANYLIGHT_EXHAUSTIVE_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_EXHAUSTIVE_ESTIMATE_H
+#include "core/manylight/estimator.h"
+
+SST_BEGIN
+
+// VPLs [first, end) of the set: one call covers all of them, or, where a device bounds a
+// shader's loop iterations, one slice per dispatch, the slices' sums added in order.
+SST_FUNC IndirectEstimate estimate_exhaustive_range(ML_CTX_PARAM SST_IN(ShadingPoint) sp, uint first, uint end) {
+  IndirectEstimate e = indirect_estimate_zero();
+  for (uint j = first; j < end && j < ML_PARAMS.vpl_count; ++j) {
+    ML_COUNT_ITERATION();
+    vec3 c = shade_vpl(ML_CTX sp, ML_VPL(j), e.shadow_rays);
+    e.value += c;
+  }
+  return e;
+}
+
+SST_FUNC IndirectEstimate estimate_exhaustive(ML_CTX_PARAM SST_IN(ShadingPoint) sp) {
+  return estimate_exhaustive_range(ML_CTX sp, 0u, ML_PARAMS.vpl_count);
+}
+
+SST_END
+
+#endif  // SST_CORE_MANYLIGHT_EXHAUSTIVE_ESTIMATE_H

@@ -1,0 +1,160 @@
+// `sst`, stochastic substitute trees (Tatzgern et al. 2020, section 4), the estimate at one
+// shading point (shared C++/GLSL source; sst_sampler.h describes the method and its parameters).
+// Per sample: pick a lobe, walk the tree with w = M * G * I, stop at a leaf or (diffuse lobe, with
+// substitutes) at the first suitable node, whose Gaussian gives a point light; shade it divided by
+// the walk's and the lobe's probability.
+#ifndef SST_CORE_MANYLIGHT_SST_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_SST_ESTIMATE_H
+#include "core/lighttree/box_bounds.h"
+#include "core/math/accurate_math.h"
+#include "core/manylight/estimator.h"
+
+SST_BEGIN
+
+SST_CONSTANT float kSstTwoPi = 6.28318530717958647692f;
+
+// Whether the ray x + tR (t >= 0) meets the box (slab test).
+SST_FUNC bool sst_ray_hits_box(vec3 x, vec3 r, vec3 lo, vec3 hi) {
+  float t0 = 0.0f;
+  float t1 = kInf;
+  for (int a = 0; a < 3; ++a) {
+    if (r[a] == 0.0f) {
+      if (x[a] < lo[a] || x[a] > hi[a]) return false;
+      continue;
+    }
+    float inv = 1.0f / r[a];
+    SST_PRECISE float ta = (lo[a] - x[a]) * inv;
+    SST_PRECISE float tb = (hi[a] - x[a]) * inv;
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// The direction toward the box closest to the mirror direction R: R when it hits the box, else
+// toward the box point nearest to the ray (a cheap stand-in for the exact minimiser).
+SST_FUNC vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 lo, vec3 hi) {
+  if (sst_ray_hits_box(x, r, lo, hi)) return r;
+  SST_PRECISE vec3 to_center = box_center(lo, hi) - x;
+  float t = max(0.0f, dot3(to_center, r));
+  SST_PRECISE vec3 q = x + t * r;
+  SST_PRECISE vec3 d = clamp(q, lo, hi) - x;
+  float len = length3(d);
+  SST_PRECISE vec3 dn = d / len;
+  return len > 0.0f ? dn : r;
+}
+
+// M: the lobe's BRDF bound times the cosine bound over the node's box (sp.brdf: the lobe's part).
+SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, bool glossy) {
+  float cos_bound = box_cos_bound(node.bounds_lo, node.bounds_hi, sp.p, sp.basis.n);
+  if (!(cos_bound > 0.0f)) return 0.0f;
+  if (!glossy) {
+    SST_PRECISE float m = luminance(sp.brdf.diffuse) * kInvPi * cos_bound;
+    return m;
+  }
+  vec3 wo_world = to_world(sp.basis, sp.wo);
+  SST_PRECISE vec3 mirror = 2.0f * dot3(sp.basis.n, wo_world) * sp.basis.n - wo_world;
+  vec3 wi = to_local(sp.basis, sst_glossy_direction(sp.p, mirror, node.bounds_lo, node.bounds_hi));
+  float f = luminance(brdf_eval(sp.brdf, sp.wo, wi));
+  // The floor keeps every box above the surface reachable.
+  SST_PRECISE float floor_value = 1e-3f * max(luminance(sp.brdf.f0), 1e-6f);
+  SST_PRECISE float with_floor = f + floor_value;
+  SST_PRECISE float m = (is_finite(f) ? with_floor : floor_value) * cos_bound;
+  return m;
+}
+
+// w = M * G * I, G = 1 / max(d^2, eps^2).
+SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, float eps, bool glossy) {
+  if (light_node_empty(node)) return 0.0f;
+  float intensity = luminance(node.intensity);
+  if (!(intensity > 0.0f)) return 0.0f;
+  float m = sst_material_bound(node, sp, glossy);
+  if (!(m > 0.0f)) return 0.0f;
+  // eps = 0 would divide by 0 at a box containing x: floored far below any scene scale.
+  SST_PRECISE float eps2 = max(eps * eps, 1e-30f);
+  float g = 1.0f / max(box_distance2_min(node.bounds_lo, node.bounds_hi, sp.p), eps2);
+  SST_PRECISE float w = m * g * intensity;
+  return w;
+}
+
+// The part of the BRDF the lobe shades.
+SST_FUNC Brdf sst_lobe_brdf(Brdf b, bool glossy) {
+  if (glossy) {
+    b.diffuse = vec3(0.0f);
+  } else {
+    b.specular = false;
+    b.f0 = vec3(0.0f);
+  }
+  return b;
+}
+
+// Three standard normal deviates from two 2D uniforms (Box-Muller).
+SST_FUNC vec3 sst_standard_normals(vec2 a, vec2 b) {
+  // 1 - u is in (0, 1]: the logarithm stays finite.
+  float ra = sqrt(-2.0f * accurate_log(max(1.0f - a.x, 1e-30f)));
+  float rb = sqrt(-2.0f * accurate_log(max(1.0f - b.x, 1e-30f)));
+  SST_PRECISE float pa = kSstTwoPi * a.y;
+  SST_PRECISE float pb = kSstTwoPi * b.y;
+  SST_PRECISE vec3 r = vec3(ra * accurate_cos(pa), ra * accurate_sin(pa), rb * accurate_cos(pb));
+  return r;
+}
+
+// A light position from the node's Gaussian (the normal deviates scaled by the standard
+// deviations in the node's basis about the mean), clamped into its box: the box holds every VPL
+// of the node, and a draw outside it would be light from nowhere.
+SST_FUNC vec3 sst_substitute_position(SST_IN(LightNode) node, vec3 normals) {
+  vec3 sd = vec3(sqrt(max(node.variance.x, 0.0f)), sqrt(max(node.variance.y, 0.0f)), max(node.sigma_z, 0.0f));
+  SST_PRECISE vec3 scaled = sd * normals;
+  vec3 offset = to_world(basis_from_normal(node.normal), scaled);
+  SST_PRECISE vec3 p = node.mean + (is_finite3(offset) ? offset : vec3(0.0f));
+  return clamp(p, node.bounds_lo, node.bounds_hi);
+}
+
+SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_INOUT(PixelSampler) ps) {
+  IndirectEstimate e = indirect_estimate_zero();
+  float p_glossy = sp.brdf.specular ? clamp(brdf_specular_probability(sp.brdf, sp.wo), 0.0f, 1.0f) : 0.0f;
+  bool glossy = false;
+  float p_lobe = 1.0f;
+  if (p_glossy >= 1.0f) {
+    glossy = true;
+  } else if (p_glossy > 0.0f) {
+    glossy = pixel_sampler_get1d(ps) < p_glossy;
+    p_lobe = glossy ? p_glossy : 1.0f - p_glossy;
+  }
+  ShadingPoint lp = sp;
+  if (sp.brdf.specular) lp.brdf = sst_lobe_brdf(sp.brdf, glossy);
+  bool stop_at_suitable = !glossy && ML_PARAMS.sst_substitutes != 0u;
+
+  TreeWalk walk = tree_walk_begin(ML_PARAMS.tree_root);
+  for (uint step = 0u; step < ML_PARAMS.tree_node_count && walk.node != kNoNode; ++step) {
+    walk.nodes_visited += 1u;
+    LightNode node = ML_NODE(walk.node);
+    bool leaf = light_node_is_leaf(node);
+    if (leaf || (stop_at_suitable && light_node_suitable(node))) {
+      Vpl vpl;
+      if (leaf) {
+        if (node.left == kNoNode || node.left >= ML_PARAMS.vpl_count) break;
+        vpl = ML_VPL(node.left);
+      } else {
+        vec2 a = pixel_sampler_get2d(ps);
+        vec2 b = pixel_sampler_get2d(ps);
+        vpl.position = sst_substitute_position(node, sst_standard_normals(a, b));
+        vpl.normal = node.normal;
+        vpl.intensity = node.intensity;
+      }
+      vec3 c = shade_vpl(ML_CTX lp, vpl, e.shadow_rays);
+      e.value = divide_by_probability(c, tree_probability_times(walk.probability, p_lobe));
+      break;
+    }
+    vec2 w = vec2(sst_node_weight(ML_NODE(node.left), lp, ML_PARAMS.sst_eps, glossy),
+                  sst_node_weight(ML_NODE(node.right), lp, ML_PARAMS.sst_eps, glossy));
+    tree_walk_step(walk, node, w, ps);
+  }
+  e.nodes_visited = walk.nodes_visited;
+  return e;
+}
+
+SST_END
+
+#endif  // SST_CORE_MANYLIGHT_SST_ESTIMATE_H

@@ -26,7 +26,7 @@ class GpuRenderContext {
   const GpuScene& scene() const { return *scene_; }
   const GpuBvh& bvh() const { return *bvh_; }
   const GpuLights& lights() const { return *lights_; }
-  // EmbreeAccel's scene-relative ray offset (scene_ray_epsilon), for gpu/shaders/ray_offset.glsl.
+  // EmbreeAccel's scene-relative ray offset (scene_ray_epsilon), for core/accel/ray_offset.h.
   float ray_epsilon() const { return ray_epsilon_; }
   // Bindings 0 .. of every rendering shader: the scene (SCENE_BUFFERS(0)), the BVH nodes and
   // triangles (5, 6), the lights (LIGHT_BUFFERS(7)).

@@ -3,13 +3,14 @@
 // (core/accel/flat_bvh.h): the same traversal code, so the CPU and GPU images can be compared bit
 // for bit, without Embree's different barycentrics and edge decisions.
 // Offsets that keep secondary rays off their own surface are relative to the scene size
-// (`ray_epsilon()`), never absolute, so millimetre and kilometre scenes behave the same.
+// (`ray_epsilon()`, ray_offset.h), never absolute, so millimetre and kilometre scenes behave the same.
 #pragma once
 #include <embree3/rtcore.h>
 
 #include <cstdint>
 #include <memory>
 
+#include "core/accel/ray_offset.h"
 #include "core/math/math.h"
 #include "core/scene/scene.h"
 
@@ -31,7 +32,7 @@ struct Hit {
 
 // The scene-relative part of every ray offset: 1e-5 of the scene diagonal (1e-5 for an empty or
 // degenerate scene), far below any feature the scenes model, far above float noise. The Vulkan
-// backend's offsets (gpu/shaders/ray_offset.glsl) use the same value.
+// backend's offsets (core/accel/ray_offset.h) use the same value.
 float scene_ray_epsilon(const Scene& scene);
 
 struct FlatBvh;
@@ -49,25 +50,15 @@ class EmbreeAccel {
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
 
-  // Offset along the geometric normal for spawning rays from a surface point p: a fraction of
-  // the scene diagonal plus a few float ulps of p's magnitude (for scenes far from the origin).
-  float ray_epsilon(vec3 p) const {
-    return epsilon_ + 1e-6f * max_component(glm::abs(p));
-  }
-  vec3 offset_point(vec3 p, vec3 ng_toward) const { return p + ng_toward * ray_epsilon(p); }
-
-  // A shadow ray between surface point p (geometric normal ng_p, on the side of y) and y. Both
-  // ends are lifted off their surfaces along their normals (ng_y = 0 for a point light, which
-  // has no surface), and the ray runs between the lifted points: offsetting only the origin and
-  // shortening tmax by a constant fails at grazing angles, where the lifted ray meets the
-  // light's own plane up to eps / cos(theta) early and reports the light as its own occluder.
+  // Offset along the geometric normal for spawning rays from a surface point p (ray_offset.h).
+  float ray_epsilon(vec3 p) const { return ray_offset_distance(epsilon_, p); }
+  vec3 offset_point(vec3 p, vec3 ng_toward) const { return offset_ray_origin(epsilon_, p, ng_toward); }
+  // The shadow ray between surface point p (geometric normal ng_p, on the side of y) and y
+  // (shadow_ray_segment, ray_offset.h; ng_y = 0 for a point light).
   Ray shadow_ray(vec3 p, vec3 ng_p, vec3 y, vec3 ng_y) const {
     Ray ray;
-    ray.origin = offset_point(p, ng_p);
-    vec3 target = glm::dot(ng_y, p - y) < 0.0f ? offset_point(y, -ng_y) : offset_point(y, ng_y);
-    ray.direction = target - ray.origin;
+    shadow_ray_segment(epsilon_, p, ng_p, y, ng_y, ray.origin, ray.direction, ray.tmax);
     ray.tmin = 0.0f;
-    ray.tmax = 1.0f - 1e-4f;
     return ray;
   }
 

@@ -17,7 +17,7 @@ using glm::vec3;
 #endif
 
 // Push constants of pt.comp: the frame (camera, seed, this dispatch's sample range), the ray
-// offset of gpu/shaders/ray_offset.glsl (EmbreeAccel's scene_ray_epsilon) and PathTracerParams.
+// offset of core/accel/ray_offset.h (EmbreeAccel's scene_ray_epsilon) and PathTracerParams.
 struct PathTraceParams {
   FrameParams frame;
   float ray_epsilon;

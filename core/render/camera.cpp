@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "core/render/pinhole.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -17,11 +18,9 @@ PinholeCamera::PinholeCamera(const Camera& camera, int width, int height)
 }
 
 Ray PinholeCamera::generate(float px, float py) const {
-  float sx = (2.0f * px / float(width_) - 1.0f) * tan_half_y_ * aspect_;
-  float sy = (1.0f - 2.0f * py / float(height_)) * tan_half_y_;
   Ray ray;
   ray.origin = eye_;
-  ray.direction = glm::normalize(forward_ + sx * right_ + sy * up_);
+  ray.direction = pinhole_direction(forward_, right_, up_, tan_half_y_, aspect_, float(width_), float(height_), px, py);
   return ray;
 }
 

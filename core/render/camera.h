@@ -11,7 +11,7 @@ class PinholeCamera {
   // (px, py) in pixels, continuous: pixel x covers [x, x+1). Unit-length direction.
   Ray generate(float px, float py) const;
 
-  // What generate() computes from, for the GPU port (gpu/shaders/camera.glsl).
+  // What generate() computes from, for the GPU port (core/render/pinhole.h).
   struct Basis {
     vec3 eye, right, up, forward;
     float tan_half_y, aspect;

@@ -18,7 +18,7 @@ layout(push_constant) uniform Push { FrameParams frame; };
 #include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
 #include "core/rng/sobol_sampler.h"
-#include "gpu/shaders/camera.glsl"
+#include "core/render/pinhole.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 

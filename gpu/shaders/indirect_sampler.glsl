@@ -4,11 +4,11 @@
 // The includer declares, before including this file:
 //   MANY_LIGHT_BUFFERS(first)     the sampler's inputs (core/manylight/many_light_layout.h)
 //   the flat BVH traversal        core/accel/bvh_traverse.h with BVH_NODE / BVH_TRIANGLE
-//   SCENE_RAY_EPSILON             EmbreeAccel's epsilon_ (gpu/shaders/ray_offset.glsl)
+//   SCENE_RAY_EPSILON             EmbreeAccel's epsilon_ (core/accel/ray_offset.h)
 #ifndef SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL
 #define SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL
 #include "core/vpl/vpl.h"
-#include "gpu/shaders/ray_offset.glsl"
+#include "core/accel/ray_offset.h"
 
 Vpl ml_vpl(uint j) {
   GpuVpl g = ml_vpls[j];
@@ -23,7 +23,7 @@ Vpl ml_vpl(uint j) {
 bool ml_occluded(vec3 x, vec3 ng, vec3 p, vec3 n) {
   vec3 origin, dir;
   float tmax;
-  shadow_ray(x, ng, p, n, origin, dir, tmax);
+  shadow_ray_segment(SCENE_RAY_EPSILON, x, ng, p, n, origin, dir, tmax);
   return bvh_occluded(origin, dir, 0.0, tmax) != BVH_VISIBLE;
 }
 

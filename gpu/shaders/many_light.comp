@@ -23,7 +23,7 @@ layout(std430, binding = 19) buffer Texels { ManyLightTexel texels[]; };
 layout(std430, binding = 20) buffer Histogram { uint depth_histogram[]; };
 layout(push_constant) uniform Push {
   FrameParams frame;
-  float scene_epsilon;  // SCENE_RAY_EPSILON of gpu/shaders/ray_offset.glsl
+  float scene_epsilon;  // SCENE_RAY_EPSILON of core/accel/ray_offset.h
   uint diffuse_only;
 };
 #define BVH_NODE(i) bvh_nodes[i]
@@ -32,7 +32,7 @@ layout(push_constant) uniform Push {
 #include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
 #include "core/rng/sobol_sampler.h"
-#include "gpu/shaders/camera.glsl"
+#include "core/render/pinhole.h"
 #include "gpu/shaders/path_trace.glsl"
 #include "gpu/shaders/indirect_sampler.glsl"
 

@@ -7,7 +7,7 @@
 //   the scene buffers (SCENE_BUFFERS(first), core/scene/scene_layout.h),
 //   the light buffers (LIGHT_BUFFERS(first), core/lights/light_layout.h),
 //   BVH_NODE / BVH_TRIANGLE and includes core/accel/bvh_traverse.h,
-//   SCENE_RAY_EPSILON (EmbreeAccel's scene_ray_epsilon, for gpu/shaders/ray_offset.glsl).
+//   SCENE_RAY_EPSILON (EmbreeAccel's scene_ray_epsilon, for core/accel/ray_offset.h).
 // Rays are traced through the flat BVH (bvh_traverse.h) where the CPU uses Embree: a ray that
 // grazes an edge may hit on one backend and miss on the other (rare; see
 // tests/gpu/path_trace_pass_test.cpp). A BVH stack overflow (never seen: the builder bounds the
@@ -17,7 +17,7 @@
 #include "core/math/vector_math.h"
 #include "core/material/brdf.h"
 #include "gpu/shaders/light_sampler.glsl"
-#include "gpu/shaders/ray_offset.glsl"
+#include "core/accel/ray_offset.h"
 #include "core/rng/sobol_sampler.h"
 #include "gpu/shaders/surface.glsl"
 
@@ -60,11 +60,11 @@ vec3 sample_direct(Surface s, Brdf brdf, Basis basis, vec3 wo, vec2 u, inout Pat
   vec3 origin, dir;
   float tmax;
   if (isinf(ls.distance)) {
-    origin = offset_point(s.p, s.ng);
+    origin = offset_ray_origin(SCENE_RAY_EPSILON, s.p, s.ng);
     dir = ls.wi;
     tmax = kInf;
   } else {
-    shadow_ray(s.p, s.ng, ls.point, ls.normal, origin, dir, tmax);
+    shadow_ray_segment(SCENE_RAY_EPSILON, s.p, s.ng, ls.point, ls.normal, origin, dir, tmax);
   }
   ++counters.shadow_rays;
   if (path_occluded(origin, dir, tmax)) return vec3(0.0);
@@ -139,7 +139,7 @@ PathSample trace_path(vec3 origin, vec3 dir, int max_bounces, int rr_min_bounces
     vec3 wi = to_world(basis, bs.wi);
     if (dot3(wi, s.ng) <= 0.0) break;  // would pass through the surface
 
-    origin = offset_point(s.p, s.ng);
+    origin = offset_ray_origin(SCENE_RAY_EPSILON, s.p, s.ng);
     dir = wi;
     ++counters.bounce_rays;
     BvhHit next;

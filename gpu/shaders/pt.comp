@@ -23,7 +23,7 @@ layout(push_constant) uniform Push { PathTraceParams params; };
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
 #include "core/accel/bvh_traverse.h"
-#include "gpu/shaders/camera.glsl"
+#include "core/render/pinhole.h"
 #include "gpu/shaders/path_trace.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -51,7 +51,7 @@ layout(push_constant) uniform Push {
 #include "core/math/vector_math.h"
 #include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
-#include "gpu/shaders/ray_offset.glsl"
+#include "core/accel/ray_offset.h"
 #include "gpu/shaders/surface.glsl"
 #include "gpu/shaders/light_sampler.glsl"
 
@@ -82,7 +82,7 @@ uvec2 trace(uint path, uint base) {
   vec2 u_dir = next_2d_as_cpu(rng);
   EmissionSample e;
   if (!light_sample_emission(u_pick, u_pos, u_dir, e)) return uvec2(0u);
-  vec3 origin = e.normal == vec3(0.0) ? e.position : offset_point(e.position, e.normal);
+  vec3 origin = e.normal == vec3(0.0) ? e.position : offset_ray_origin(SCENE_RAY_EPSILON, e.position, e.normal);
   vec3 dir = e.direction;
   vec3 beta = e.weight;
   uint deposits = 0u, rays = 0u;
@@ -121,7 +121,7 @@ uvec2 trace(uint path, uint base) {
     if (!(dot3(wi, s.ng) > 0.0)) break;  // would pass through the surface
     precise vec3 b = beta * albedo;
     beta = b;
-    origin = offset_point(s.p, s.ng);
+    origin = offset_ray_origin(SCENE_RAY_EPSILON, s.p, s.ng);
     dir = wi;
   }
   return uvec2(deposits, rays);

@@ -1,0 +1,34 @@
+// The direction of a pinhole camera's ray through a point of the image (shared C++/GLSL source):
+// PinholeCamera::generate on the CPU, the camera rays of every shader.
+#ifndef SST_CORE_RENDER_PINHOLE_H
+#define SST_CORE_RENDER_PINHOLE_H
+#include "core/math/vector_math.h"
+#include "core/render/frame_layout.h"
+
+#ifdef __cplusplus
+namespace sst {
+using glsl::FrameParams;
+}
+#endif
+
+SST_BEGIN
+
+// (px, py) in pixels, continuous, (0, 0) the top-left corner; forward/right/up the camera's
+// orthonormal axes. Unit direction.
+SST_FUNC vec3 pinhole_direction(vec3 forward, vec3 right, vec3 up, float tan_half_y, float aspect, float width,
+                                float height, float px, float py) {
+  SST_PRECISE float sx = (2.0f * px / width - 1.0f) * tan_half_y * aspect;
+  SST_PRECISE float sy = (1.0f - 2.0f * py / height) * tan_half_y;
+  SST_PRECISE vec3 d = forward + sx * right + sy * up;
+  return normalize3(d);
+}
+
+// The same with the camera of a frame's parameters.
+SST_FUNC vec3 camera_direction(SST_IN(FrameParams) frame, float px, float py) {
+  return pinhole_direction(frame.forward, frame.right, frame.up, frame.tan_half_y, frame.aspect, float(frame.width),
+                           float(frame.height), px, py);
+}
+
+SST_END
+
+#endif  // SST_CORE_RENDER_PINHOLE_H

@@ -2,13 +2,7 @@
 // summed intensity, bounding box and VPL count of its subtree, plus the SST substitute
 // distribution of its VPLs (Tatzgern et al. 2020, eqs. 1-3). The samplers of METHODS.md §3 walk
 // it; all builders produce the same flat node layout, so every sampler works on every tree.
-//
-// | parameter             | default      | meaning                                                        |
-// |-----------------------|--------------|----------------------------------------------------------------|
-// | tree                  | radix        | builder: radix (Karras 2012, the SST paper's), perfect (heap; RTSLC, hybrid), agglomerative (Walter 2005, <= 20000 VPLs) |
-// | v_min                 | 0.5          | SST: a node is suitable only if its normal similarity v >= v_min (paper 0.5, thesis 0.7) |
-// | sigma_max             | 0.005        | SST: ... and if sigma_z <= sigma_max * D (paper 0.1 scene units ~ 0.005 D, thesis 0.3 ~ 0.015 D) |
-// | sigma_max_relative_to | vpl_bounds   | D: diagonal of the VPL bounding box (vpl_bounds) or of the scene's (scene_bounds) |
+// Its parameters are LightTreeParams below; their visit() help is their documentation.
 //
 // Length scale D. sigma_max is a fraction of D, never an absolute length, because scenes come
 // in millimetres and kilometres. By default D is the diagonal of the bounding box of the VPL
@@ -65,12 +59,18 @@ struct LightTreeParams {
 
   template <class V>
   void visit(V&& v) {
-    v("tree", tree, "light tree builder: radix (Karras 2012), perfect (heap layout), agglomerative (Walter 2005)");
-    v("v_min", v_min, "SST: minimum normal similarity of a node sampled as a substitute, in [0, 1]");
+    v("tree", tree,
+      "light tree builder: radix (Karras 2012, the SST paper's), perfect (heap layout, the only one rtslc and hybrid "
+      "accept) or agglomerative (Walter 2005; O(n^2), at most 20000 VPLs)");
+    v("v_min", v_min,
+      "substitutes (sst, hybrid): a node is suitable only if the normal similarity v of its VPLs is >= v_min, in "
+      "[0, 1] (SST paper 0.5, hybrid thesis 0.7)");
     v("sigma_max", sigma_max,
-      "SST: maximum standard deviation along the node normal, as a fraction of D (paper 0.1 ~ 0.005)");
+      "substitutes (sst, hybrid): a node is suitable only if also its VPLs' standard deviation along its normal is "
+      "<= sigma_max x D (SST paper 0.1 scene units ~ 0.005 D, hybrid thesis 0.3 ~ 0.015 D)");
     v("sigma_max_relative_to", sigma_max_relative_to,
-      "D for sigma_max: diagonal of vpl_bounds or scene_bounds");
+      "the length D of sigma_max: the diagonal of the VPLs' bounding box (vpl_bounds: what is lit, not inflated by "
+      "sky or ground geometry) or of the scene's (scene_bounds)");
   }
 };
 

@@ -16,15 +16,8 @@
 // expected-contribution weights (zero for a box entirely behind x but not a bound) the method is
 // biased by design.
 //
-// | parameter  | default | meaning                                                                    |
-// |------------|---------|----------------------------------------------------------------------------|
-// | (VplParams, LightTreeParams: tree must be perfect; v_min 0.7, sigma_max 0.015 = the thesis's 0.3) |
-// | block_size | 8       | k: pixels per block side; one cut per block                                |
-// | cut_size   | 8       | n: nodes per cut = traversals per sample (the per-pixel budget), 1..32     |
-// | n_min      | 0.9     | similarity: minimum dot product of a pixel's normal and a block centre's   |
-// | d_max      | 0.05    | similarity: maximum distance to a block centre's point, fraction of the scene diagonal |
-//
-// The thesis gives no values for n_min and d_max; 0.9 (~25 degrees) and 5% of the scene are ours.
+// Parameters: HybridParams below, which holds those of VPL generation and of the light tree, with
+// the thesis's tree and thresholds as defaults (its constructor).
 // The estimate and the expected contribution hybrid_weight are hybrid_estimate.h's.
 #pragma once
 #include <span>
@@ -43,6 +36,7 @@ struct HybridParams {
   TreeMethodParams common;
   int block_size = 8;
   int cut_size = 8;
+  // The thesis gives no values for n_min and d_max; 0.9 (~25 degrees) and 5% of the scene are ours.
   float n_min = 0.9f;
   float d_max = 0.05f;
 
@@ -54,10 +48,14 @@ struct HybridParams {
   template <class V>
   void visit(V&& v) {
     common.visit(v);
-    v("block_size", block_size, "pixels per side of a block sharing one shallow light cut");
-    v("cut_size", cut_size, "nodes per cut (1..32) = traversals per indirect sample");
-    v("n_min", n_min, "cut blending: a block counts only if its normal . the pixel's normal > n_min");
-    v("d_max", d_max, "cut blending: ... and its point is closer than d_max x the scene diagonal");
+    v("block_size", block_size, "k: pixels per side of a block; one shallow light cut per block");
+    v("cut_size", cut_size, "n: nodes per cut (1..32) = traversals per indirect sample, the per-pixel budget");
+    v("n_min", n_min,
+      "cut blending: a neighbouring block's cut is used only if the dot product of its centre's normal and the "
+      "pixel's is > n_min, the cosine of the largest angle between them");
+    v("d_max", d_max,
+      "cut blending: a neighbouring block's cut is used only if also its centre's point is closer to the pixel's than d_max x the scene diagonal; with no "
+      "similar block the pixel takes the mock cut (every node of tree level floor(log2 n))");
   }
 };
 void validate(const HybridParams& params);  // sst::Error naming the bad parameter

@@ -4,13 +4,8 @@
 // estimates, each divided by its traversal probability. Unbiased (without interleaving, per
 // pixel; with interleaving, over each r x r tile of pixels).
 //
-// | parameter  | default | meaning                                                                   |
-// |------------|---------|---------------------------------------------------------------------------|
-// | (VplParams, LightTreeParams: see vpl_generator.h, light_tree.h; tree must be perfect)            |
-// | block_size | 8       | k: pixels per block side; one cut per block                               |
-// | cut_size   | 8       | M: nodes per cut, 1..32                                                   |
-// | interleave | 1       | r in {1, 2, 4}: pixel slot s of an r x r tile evaluates cut nodes i = s mod r^2, times r^2 |
-// | weights    | rtslc   | traversal weights: rtslc (Lin & Yuksel 2020: mean of the min- and max-distance weights) or slc (Yuksel 2019: slc_child_weights, min distance; for equal-sample comparisons) |
+// Parameters: RtslcParams below, which holds those of VPL generation and the light tree (which
+// must be the perfect one).
 #pragma once
 #include <span>
 #include <string>
@@ -36,11 +31,14 @@ struct RtslcParams {
   template <class V>
   void visit(V&& v) {
     common.visit(v);
-    v("block_size", block_size, "pixels per side of a block sharing one light cut");
-    v("cut_size", cut_size, "nodes per light cut (1..32); one traversal from each per sample");
-    v("interleave", interleave, "interleaved sampling rate r (1, 2 or 4): each pixel of an r x r tile evaluates 1/r^2 of the cut");
+    v("block_size", block_size, "k: pixels per side of a block; one light cut per block, built at a random pixel of it");
+    v("cut_size", cut_size, "M: nodes per light cut (1..32); one traversal from each per indirect sample");
+    v("interleave", interleave,
+      "interleaved sampling rate r (1, 2 or 4): pixel s of an r x r tile evaluates the cut nodes i with i mod r^2 = "
+      "s, weighted by r^2 (unbiased over the tile, not per pixel)");
     v("weights", weights,
-      "traversal weights: rtslc (Lin & Yuksel 2020: mean of min- and max-distance weights) or slc (Yuksel 2019: min distance)");
+      "traversal weights: rtslc (Lin & Yuksel 2020: mean of the min- and max-distance weights) or slc (Yuksel 2019: "
+      "min distance, as the slc method; for equal-sample comparisons)");
   }
 };
 void validate(const RtslcParams& params);  // sst::Error naming the bad parameter

@@ -32,10 +32,6 @@
 // earlier stops, fewer nodes visited, more bias). With substitutes = false no internal node is
 // a stop, and sst is an unbiased (w.r.t. exhaustive) light-tree sampler with the weights above
 // (LightTreeParams caps v_min at 1, which does not exclude internal nodes of equal normals).
-//
-// | parameter   | default | meaning                                                        |
-// |-------------|---------|----------------------------------------------------------------|
-// | substitutes | true    | stop the diffuse walk at suitable nodes (false: leaves only)   |
 #pragma once
 #include "core/manylight/slc_sampler.h"
 #include "core/manylight/sst_estimate.h"
@@ -51,9 +47,12 @@ struct SstParams {
   float distance_floor = 0.1f;
   template <class V>
   void visit(V&& v) {
-    v("substitutes", substitutes, "SST: stop the diffuse walk at suitable nodes; false: leaves only (unbiased)");
+    v("substitutes", substitutes,
+      "stop the diffuse walk at a suitable node (v_min, sigma_max) and sample its Gaussian substitute; false: walk to "
+      "a leaf (unbiased)");
     v("distance_floor", distance_floor,
-      "SST: lower bound of the distance in traversal weights (the paper's epsilon), fraction of the tree's D");
+      "lower bound eps of the distance in the traversal weights (the paper's epsilon), as a fraction of the "
+      "tree's D (see sigma_max_relative_to); the paper gives no value, the default measured best on the Cornell box");
   }
 };
 

@@ -39,28 +39,35 @@ MethodInfo vpl_method(const char* name, const char* description) {
 std::vector<MethodInfo>& mutable_registry() {
   static std::vector<MethodInfo> registry = {
       entry<PathTracerParams, PathTracer>(
-          "pt", "unidirectional path tracer, next-event estimation with MIS; PT_n = --max-bounces n"),
+          "pt",
+          "unidirectional path tracer: next-event estimation with MIS (power heuristic), lights picked by power, close "
+          "emissive triangles sampled by solid angle and others by area; the ground truth (PT_n = --max-bounces n)"),
       vpl_method<ExhaustiveSampler>("exhaustive", "every VPL with its shadow ray: the VPL ground truth"),
       vpl_method<UniformSampler>("uniform", "one VPL per indirect sample, drawn uniformly"),
-      entry<TreeMethodParams>("slc", "stochastic lightcuts (Yuksel 2019): one root-to-leaf light-tree walk per sample",
+      entry<TreeMethodParams>("slc",
+                              "stochastic lightcuts (Yuksel 2019): one root-to-leaf light-tree walk per sample, by "
+                              "intensity x cosine bound / distance^2",
                               [](const TreeMethodParams& p) -> std::unique_ptr<Method> {
                                 return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p),
                                                                          std::make_unique<SlcSampler>(p.tree));
                               }),
       entry<SstMethodParams>("sst",
-                             "stochastic substitute trees (Tatzgern 2020): walk stops at a suitable node's Gaussian; biased",
+                             "stochastic substitute trees (Tatzgern 2020): the walk stops at a suitable node and "
+                             "samples its Gaussian substitute; diffuse and glossy lobes; biased",
                              [](const SstMethodParams& p) -> std::unique_ptr<Method> {
                                return std::make_unique<ManyLightMethod>(p.base.vpl, params_to_json(p),
                                                                         std::make_unique<SstSampler>(p.base.tree, p.sst));
                              }),
       entry<RtslcParams>("rtslc",
-                         "real-time stochastic lightcuts (Lin & Yuksel 2020): per-block cuts, one walk per cut node",
+                         "real-time stochastic lightcuts (Lin & Yuksel 2020) on the perfect tree: per-block cuts, "
+                         "one walk per cut node, min/max-distance weights, interleaving",
                          [](const RtslcParams& p) -> std::unique_ptr<Method> {
                            return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
                                                                     std::make_unique<RtslcSampler>(p));
                          }),
       entry<HybridParams>("hybrid",
-                          "shallow light cuts over an SST (thesis ch. 5): blended per-block cuts, substitutes; biased",
+                          "shallow light cuts over an SST (hybrid thesis, ch. 5): per-block cuts blended "
+                          "stochastically between neighbours, mock cuts, substitutes; biased",
                           [](const HybridParams& p) -> std::unique_ptr<Method> {
                             return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
                                                                      std::make_unique<HybridSampler>(p));

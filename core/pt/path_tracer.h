@@ -1,11 +1,6 @@
 // `pt`: unidirectional path tracer with next-event estimation and MIS (power heuristic) between
 // light sampling and BRDF sampling. `max_bounces` counts indirect bounces, as Cycles and the SST
 // paper's PT_n rows do: 0 = direct light only. It is the ground truth of every other method.
-//
-// | parameter        | default | meaning                                                        |
-// |------------------|---------|----------------------------------------------------------------|
-// | max_bounces      | 8       | indirect bounces (PT1/PT2/PT3 of the SST paper: 1, 2, 3)        |
-// | rr_min_bounces   | 3       | bounces before Russian roulette starts (never, if >= max_bounces) |
 #pragma once
 #include "core/render/method.h"
 #include "core/shading/surface.h"
@@ -20,8 +15,11 @@ struct PathTracerParams {
 
   template <class V>
   void visit(V&& v) {
-    v("max_bounces", max_bounces, "maximum number of indirect bounces (0: direct light only)");
-    v("rr_min_bounces", rr_min_bounces, "indirect bounces before Russian roulette may end a path");
+    v("max_bounces", max_bounces,
+      "maximum number of indirect bounces, as Cycles counts them (0: direct light only; the SST paper's PT1, PT2, "
+      "PT3 are 1, 2, 3)");
+    v("rr_min_bounces", rr_min_bounces,
+      "indirect bounces before Russian roulette may end a path (none, if >= max_bounces)");
   }
 };
 

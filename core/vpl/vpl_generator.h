@@ -1,14 +1,6 @@
 // Instant-radiosity VPL generation (Keller 1997; METHODS.md §1): light paths leave the lights
 // (LightSampler::sample_emission) and deposit a VPL at every diffuse surface they hit, with
-// intensity = throughput * albedo / pi, then bounce on, cosine-weighted.
-//
-// | parameter        | default | meaning                                                            |
-// |------------------|---------|--------------------------------------------------------------------|
-// | vpls             | 100000  | VPLs to deposit: paths are traced, in order, until exactly this many |
-// | vpl_max_bounces  | 8       | surface hits per light path that deposit a VPL (1: one-bounce GI)   |
-// | vpl_min_bounces  | 3       | hits before Russian roulette (survival = max albedo component)       |
-// | clamp_fraction   | 0.01    | singularity clamp c = clamp_fraction * D, D = VPL-bounds diagonal    |
-// | export_vpls      | ""      | write the VPL set to this PLY file after generation (empty: don't)   |
+// intensity = throughput * albedo / pi, then bounce on, cosine-weighted. Parameters: VplParams.
 //
 // Path count. Path i always uses hash_rng(seed, i, 0, kVplStream), so a path is a pure function of
 // (seed, i). Paths 0, 1, 2, ... are traced until `vpls` VPLs exist; the last path's surplus VPLs
@@ -56,11 +48,16 @@ struct VplParams {
 
   template <class V>
   void visit(V&& v) {
-    v("vpls", vpls, "number of virtual point lights to deposit");
-    v("vpl_max_bounces", vpl_max_bounces, "surface hits per light path that deposit a VPL");
-    v("vpl_min_bounces", vpl_min_bounces, "light-path hits before Russian roulette may end a path");
-    v("clamp_fraction", clamp_fraction, "VPL singularity clamp distance as a fraction of the VPL-bounds diagonal");
-    v("export_vpls", export_vpls, "write the VPL set to this PLY point cloud (position, normal, intensity)");
+    v("vpls", vpls,
+      "number of virtual point lights: light paths are traced in order until exactly this many are deposited");
+    v("vpl_max_bounces", vpl_max_bounces, "surface hits per light path that deposit a VPL (1: one-bounce GI)");
+    v("vpl_min_bounces", vpl_min_bounces,
+      "light-path hits before Russian roulette may end a path (survival probability: the largest albedo component)");
+    v("clamp_fraction", clamp_fraction,
+      "VPL singularity clamp: a VPL's 1/d^2 is at most 1/c^2, c = clamp_fraction x the diagonal of the VPLs' "
+      "bounding box");
+    v("export_vpls", export_vpls,
+      "write the VPL set to this PLY point cloud (position, normal, intensity) after generation (empty: don't)");
   }
 };
 

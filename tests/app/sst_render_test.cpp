@@ -86,6 +86,8 @@ TEST(SstRender, ListMethodsShowsParameterTables) {
   EXPECT_EQ(r.exit_code, 0);
   EXPECT_NE(r.output.find("pt:"), std::string::npos);
   EXPECT_NE(r.output.find("--max-bounces"), std::string::npos);
+  // --markdown is a form of --list-methods, not a render option.
+  EXPECT_NE(test::run_command(render_cmd("--markdown")).exit_code, 0);
 }
 
 TEST(SstRender, ListDevicesPrintsDevicesOrReason) {

@@ -128,8 +128,8 @@ void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
           // visible to the second, and this subtree to whoever arrives second above.
           break;
         }
-        LightNode& p = nodes[parent];
-        merge_children(p, nodes[p.left], p.left, nodes[p.right], p.right, thresholds);
+        const uint32_t left = nodes[parent].left, right = nodes[parent].right;
+        nodes[parent] = merge_children(nodes[left], left, nodes[right], right, thresholds);
       }
     }
   }, tbb::simple_partitioner());

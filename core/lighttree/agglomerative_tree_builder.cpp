@@ -205,7 +205,7 @@ void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& th
   Clustering clustering(vpls, length_scale, weight_floor(vpls));
   clustering.run([&](uint32_t id, uint32_t a, uint32_t b) {
     uint32_t na = node_of(a), nb = node_of(b);
-    merge_children(tree.nodes[node_of(id)], tree.nodes[na], na, tree.nodes[nb], nb, thresholds);
+    tree.nodes[node_of(id)] = merge_children(tree.nodes[na], na, tree.nodes[nb], nb, thresholds);
   });
 }
 

@@ -1,5 +1,5 @@
 // The GPU light-tree build's push constants (gpu/light_tree_build_pass.h), defined once for C++ and
-// GLSL; the twin of the parameters LightTreeBuilder::build passes between its stages
+// GLSL: the parameters LightTreeBuilder::build passes between its stages
 // (core/lighttree/light_tree.cpp): the Morton grid of sort_key.h, the radix sort's digit, the
 // node layout of a radix or perfect (heap) tree and the SST thresholds of substitute.h.
 //

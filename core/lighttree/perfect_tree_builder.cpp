@@ -30,7 +30,7 @@ void fill_leaves(const VplSet& vpls, const uint32_t* ids, size_t n, uint32_t beg
 
 void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thresholds, LightNode* nodes) {
   for (uint32_t i = begin; i != end; ++i)
-    merge_children(nodes[i], nodes[2 * i], 2 * i, nodes[2 * i + 1], 2 * i + 1, thresholds);
+    nodes[i] = merge_children(nodes[2 * i], 2 * i, nodes[2 * i + 1], 2 * i + 1, thresholds);
 }
 
 }  // namespace

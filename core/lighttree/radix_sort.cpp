@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <string>
 
+#include "core/lighttree/radix_digit.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -35,7 +36,7 @@ void histogram(const uint64_t* keys, size_t n, const Blocks& blocks, int shift, 
   tbb::parallel_for(size_t(0), blocks.count, [&](size_t b) {
     uint32_t* c = counts + b * kBuckets;
     std::fill(c, c + kBuckets, 0u);
-    for (size_t i = blocks.begin(b), e = blocks.end(b, n); i < e; ++i) ++c[(keys[i] >> shift) & mask];
+    for (size_t i = blocks.begin(b), e = blocks.end(b, n); i < e; ++i) ++c[radix_digit(keys[i], uint32_t(shift), mask)];
   });
 }
 
@@ -62,7 +63,7 @@ void scatter(const uint64_t* keys, const uint32_t* values, size_t n, const Block
   tbb::parallel_for(size_t(0), blocks.count, [&](size_t b) {
     uint32_t* offset = offsets + b * kBuckets;
     for (size_t i = blocks.begin(b), e = blocks.end(b, n); i < e; ++i) {
-      uint32_t slot = offset[(keys[i] >> shift) & mask]++;
+      uint32_t slot = offset[radix_digit(keys[i], uint32_t(shift), mask)]++;
       keys_out[slot] = keys[i];
       values_out[slot] = values[i];
     }

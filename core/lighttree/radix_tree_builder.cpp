@@ -13,9 +13,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <bit>
-
 #include "core/lighttree/tree_builders.h"
+
+#define RADIX_TREE_KEYS_PARAM const uint64_t* keys,
+#define RADIX_TREE_KEYS_ARG keys,
+#define RADIX_TREE_KEY(i) uvec2(uint32_t(keys[i]), uint32_t(keys[i] >> 32))
+#include "core/lighttree/radix_tree_node.h"
 
 namespace sst {
 namespace {
@@ -23,51 +26,6 @@ namespace {
 constexpr size_t kGrain = 1024;
 constexpr uint32_t kPrefetch = 16;
 constexpr uint32_t kMergeChunk = 2048;
-
-// Length of the longest common prefix of keys i and j; -1 when j is outside [0, n). Keys are
-// unique (they end in the VPL id), so the xor is never 0.
-struct Prefix {
-  const uint64_t* keys;
-  int n;
-  int operator()(int i, int j) const {
-    if (j < 0 || j >= n) return -1;
-    return std::countl_zero(keys[i] ^ keys[j]);
-  }
-};
-
-// Karras 2012, Figure 4: the children of internal node i, written into node i, and the
-// parents of those children.
-void build_internal_node(const Prefix& delta, int i, LightNode* nodes, uint32_t* parents, uint32_t* ranges) {
-  const int n = delta.n;
-  // Direction of the node's key range: towards the neighbour sharing the longer prefix.
-  int d = delta(i, i + 1) - delta(i, i - 1) >= 0 ? 1 : -1;
-  // Upper bound of the range's length, then its exact other end j by binary search.
-  int prefix_min = delta(i, i - d);
-  int length_max = 2;
-  while (delta(i, i + length_max * d) > prefix_min) length_max *= 2;
-  // The searches' comparisons are coin flips for the branch predictor: add by mask instead.
-  int length = 0;
-  for (int t = length_max / 2; t >= 1; t /= 2) length += t & -int(delta(i, i + (length + t) * d) > prefix_min);
-  int j = i + length * d;
-  // The split: the last position that shares more than the range's common prefix with i.
-  int prefix_node = delta(i, j);
-  int split = 0;
-  for (int t = length;;) {
-    t = (t + 1) / 2;
-    split += t & -int(delta(i, i + (split + t) * d) > prefix_node);
-    if (t <= 1) break;
-  }
-  int gamma = i + split * d + std::min(d, 0);
-  const uint32_t first_leaf = uint32_t(n - 1);
-  uint32_t left = std::min(i, j) == gamma ? first_leaf + gamma : uint32_t(gamma);
-  uint32_t right = std::max(i, j) == gamma + 1 ? first_leaf + gamma + 1 : uint32_t(gamma + 1);
-  nodes[i].left = left;
-  nodes[i].right = right;
-  parents[left] = uint32_t(i);
-  parents[right] = uint32_t(i);
-  ranges[2 * i] = uint32_t(std::min(i, j));
-  ranges[2 * i + 1] = uint32_t(std::max(i, j));
-}
 
 }  // namespace
 
@@ -81,12 +39,20 @@ void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree) 
   scratch.ranges.resize(2 * (n == 0 ? 0 : n - 1));
   if (n == 0) return;
   scratch.parents[0] = kNoNode;
-  Prefix delta{scratch.keys.data(), int(n)};
+  const uint64_t* keys = scratch.keys.data();
   LightNode* nodes = tree.nodes.data();
   uint32_t* parents = scratch.parents.data();
   uint32_t* ranges = scratch.ranges.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, int(n) - 1, kGrain), [&](const tbb::blocked_range<int>& r) {
-    for (int i = r.begin(); i != r.end(); ++i) build_internal_node(delta, i, nodes, parents, ranges);
+    for (int i = r.begin(); i != r.end(); ++i) {
+      RadixTreeNode node = radix_tree_node(keys, int(n), i);
+      nodes[i].left = node.left;
+      nodes[i].right = node.right;
+      parents[node.left] = uint32_t(i);
+      parents[node.right] = uint32_t(i);
+      ranges[2 * i] = node.first;
+      ranges[2 * i + 1] = node.last;
+    }
   });
 }
 
@@ -128,8 +94,8 @@ void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
           // visible to the second, and this subtree to whoever arrives second above.
           break;
         }
-        LightNode& p = nodes[parent];
-        merge_children(p, nodes[p.left], p.left, nodes[p.right], p.right, thresholds);
+        const uint32_t left = nodes[parent].left, right = nodes[parent].right;
+        nodes[parent] = merge_children(nodes[left], left, nodes[right], right, thresholds);
       }
     }
   }, tbb::simple_partitioner());

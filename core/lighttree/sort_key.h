@@ -15,7 +15,113 @@
 //   and Rossignac 1998. See quantize_normal().
 // - Id: the VPL's index in its set, which makes every key unique (the radix tree needs that).
 //   25 bits: at most kMaxSortKeyVpls = 2^25 = 33,554,432 VPLs; more is an sst::Error.
-#pragma once
+//
+// Shared C++/GLSL source (core/math/cpu_gpu.h): the per-VPL key (vpl_sort_key and its parts) is
+// computed by both backends' builders with these functions. A key is held as uvec2 (x = bits
+// 0..31, y = bits 32..63) so that no shader needs 64-bit integers; C++ widens it to uint64_t.
+// The bounds, the checks and the grid over the bounds are C++ only (the host computes the grid
+// for the GPU build too).
+#ifndef SST_CORE_LIGHTTREE_SORT_KEY_H
+#define SST_CORE_LIGHTTREE_SORT_KEY_H
+#include "core/math/vector_math.h"
+
+SST_BEGIN
+
+SST_CONSTANT int kMortonBits = 30;
+SST_CONSTANT int kNormalCodeBits = 9;
+SST_CONSTANT int kIdBits = 64 - kMortonBits - kNormalCodeBits;  // 25
+SST_CONSTANT int kNormalCodeCount = 1 << kNormalCodeBits;       // 512
+// Levels of the 4-way subdivision of an octant's triangle in the normal code.
+SST_CONSTANT int kNormalSubdivisionLevels = 3;
+
+// Spreads the low 10 bits of x so that two zero bits follow each one.
+SST_FUNC uint expand_bits_10(uint x) {
+  x &= 0x3FFu;
+  x = (x * 0x00010001u) & 0xFF0000FFu;
+  x = (x * 0x00000101u) & 0x0F00F00Fu;
+  x = (x * 0x00000011u) & 0xC30C30C3u;
+  x = (x * 0x00000005u) & 0x49249249u;
+  return x;
+}
+
+// 30-bit Morton code of a point whose coordinates are already quantised to [0, 1023].
+SST_FUNC uint morton_code(uint x, uint y, uint z) {
+  return (expand_bits_10(x) << 2u) | (expand_bits_10(y) << 1u) | expand_bits_10(z);
+}
+
+// The grid cell of coordinate p along one axis: min(max((p - origin) * scale, 0), 1023),
+// truncated. Never NaN: VPL positions are checked finite and the grid's scale is finite.
+SST_FUNC uint quantize_axis(float p, float origin, float scale) {
+  SST_PRECISE float cell = (p - origin) * scale;
+  cell = cell < 0.0f ? 0.0f : cell;
+  cell = 1023.0f < cell ? 1023.0f : cell;
+  return uint(cell);
+}
+
+// Morton code of position p on the 1024^3 grid with corner `origin` and `scale` cells per unit
+// length (MortonGrid).
+SST_FUNC uint grid_morton_code(vec3 p, vec3 origin, vec3 scale) {
+  return morton_code(quantize_axis(p.x, origin.x, scale.x), quantize_axis(p.y, origin.y, scale.y),
+                     quantize_axis(p.z, origin.z, scale.z));
+}
+
+// 9-bit code of a direction (need not be unit; a zero vector gets the +x+y+z octant's centre
+// cell). quantize_normal(decode_normal(c)) == c for every code c.
+SST_FUNC uint quantize_normal(vec3 n) {
+  uint code = (n.x < 0.0f ? 4u : 0u) | (n.y < 0.0f ? 2u : 0u) | (n.z < 0.0f ? 1u : 0u);
+  // Central projection onto the octant's triangle |x| + |y| + |z| = 1 gives barycentric
+  // coordinates (a, b, c) directly.
+  vec3 m = vec3(abs(n.x), abs(n.y), abs(n.z));
+  SST_PRECISE float sum = m.x + m.y + m.z;
+  if (!(sum > 0.0f) || !is_finite(sum)) {
+    m = vec3(1.0f);
+    sum = 3.0f;
+  }
+  // Three levels of subdivision make a grid of the lines a, b, c = i / 8, so the cell is known
+  // from (floor(8a), floor(8b), floor(8c)) alone. Level by level from the top bit: coordinate
+  // x is >= 1/2 in the current triangle iff its bit is set; a corner triangle keeps the lower
+  // bits (x' = 2x - 1 or 2x), the middle one complements them (x' = 1 - 2x). Integer bit
+  // arithmetic instead of the float comparisons of the recursive definition: random normals
+  // mispredict those branches, which made this the most expensive part of a key.
+  SST_PRECISE float scale = 8.0f / sum;
+  SST_PRECISE float fi = m.x * scale;
+  SST_PRECISE float fj = m.y * scale;
+  SST_PRECISE float fk = m.z * scale;
+  uint i = min(uint(fi), 7u);
+  uint j = min(uint(fj), 7u);
+  uint k = min(uint(fk), 7u);
+  uint flip = 0u;
+  for (int level = kNormalSubdivisionLevels - 1; level >= 0; --level) {
+    uint ta = ((i >> uint(level)) ^ flip) & 1u;
+    uint tb = ((j >> uint(level)) ^ flip) & 1u;
+    uint tc = ((k >> uint(level)) ^ flip) & 1u;
+    // At most one coordinate is >= 1/2 but for rounding on a border; then x wins over y over z.
+    uint corner_b = (ta ^ 1u) & tb;
+    uint corner_c = (ta ^ 1u) & (tb ^ 1u) & tc;
+    uint middle = (ta | tb | tc) ^ 1u;
+    code = (code << 2u) | (corner_b + 2u * corner_c + 3u * middle);
+    flip ^= middle;
+  }
+  return code;
+}
+
+// The key morton << 34 | normal_code << 25 | id as (low word, high word).
+SST_FUNC uvec2 sort_key_words(uint morton, uint normal_code, uint id) {
+  uvec2 key;
+  key.x = (normal_code << uint(kIdBits)) | id;
+  key.y = (morton << uint(kNormalCodeBits + kIdBits - 32)) | (normal_code >> uint(32 - kIdBits));
+  return key;
+}
+
+// The key of VPL `id` at `position` with `normal`, over the grid (origin, scale) of the VPL
+// bounds.
+SST_FUNC uvec2 vpl_sort_key(vec3 position, vec3 normal, uint id, vec3 grid_origin, vec3 grid_scale) {
+  return sort_key_words(grid_morton_code(position, grid_origin, grid_scale), quantize_normal(normal), id);
+}
+
+SST_END
+
+#ifdef __cplusplus
 #include <cstdint>
 #include <vector>
 
@@ -24,31 +130,23 @@
 
 namespace sst {
 
-inline constexpr int kMortonBits = 30;
-inline constexpr int kNormalCodeBits = 9;
-inline constexpr int kIdBits = 64 - kMortonBits - kNormalCodeBits;  // 25
 inline constexpr uint64_t kMaxSortKeyVpls = uint64_t(1) << kIdBits;
-inline constexpr int kNormalCodeCount = 1 << kNormalCodeBits;  // 512
 
-// 30-bit Morton code of a point whose coordinates are already quantised to [0, 1023].
-uint32_t morton_code(uint32_t x, uint32_t y, uint32_t z);
+inline uint64_t sort_key_from_words(uvec2 key) { return (uint64_t(key.y) << 32) | key.x; }
 
 // Quantises positions to the 1024^3 grid over `bounds` (the VPL bounding box).
 struct MortonGrid {
   vec3 origin{0.0f};
   vec3 scale{0.0f};  // cells per unit length; 0 along an axis without extent
   static MortonGrid over(const Bounds3& bounds);
-  uint32_t code(vec3 p) const;
+  uint32_t code(vec3 p) const { return grid_morton_code(p, origin, scale); }
 };
 
-// 9-bit code of a direction (need not be unit; a zero vector gets the +x+y+z octant's centre
-// cell). quantize_normal(decode_normal(c)) == c for every code c.
-uint32_t quantize_normal(vec3 n);
 // The unit direction at the centre (centroid of the triangle cell) of code `code` < 512.
 vec3 decode_normal(uint32_t code);
 
 inline uint64_t make_sort_key(uint32_t morton, uint32_t normal_code, uint32_t id) {
-  return (uint64_t(morton) << (kNormalCodeBits + kIdBits)) | (uint64_t(normal_code) << kIdBits) | id;
+  return sort_key_from_words(sort_key_words(morton, normal_code, id));
 }
 
 // Bounding box of the VPL positions, in parallel. Checks every VPL on the way and throws
@@ -65,3 +163,6 @@ void compute_sort_keys(const VplSet& vpls, const Bounds3& vpl_bounds, std::vecto
                        std::vector<uint32_t>& ids);
 
 }  // namespace sst
+#endif
+
+#endif  // SST_CORE_LIGHTTREE_SORT_KEY_H

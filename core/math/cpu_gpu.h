@@ -14,7 +14,8 @@
 //   literals a u, so that C++ never computes in double. No swizzles (sst builds glm with
 //   GLM_FORCE_XYZW_ONLY); v.x or v[i].
 // - Built-ins with GLSL's names: abs, min, max, clamp, sqrt, floor, dot, cross, length, normalize,
-//   floatBitsToUint, uintBitsToFloat, bitfieldReverse, isnan, isinf (glm provides them in C++).
+//   floatBitsToUint, uintBitsToFloat, bitfieldReverse, findMSB, isnan, isinf (glm provides most
+//   of them in C++).
 // - Arithmetic whose bits matter is written into SST_PRECISE temporaries: GLSL's `precise`
 //   forbids the driver to fuse a*b+c; C++ is built with -ffp-contract=off for the same reason.
 // - Constants at file scope: SST_CONSTANT float kName = 1.0f;
@@ -23,6 +24,7 @@
 #define SST_CORE_MATH_CPU_GPU_H
 
 #ifdef __cplusplus
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -57,6 +59,8 @@ inline uint bitfieldReverse(uint x) {
   x = ((x >> 8) & 0x00FF00FFu) | ((x & 0x00FF00FFu) << 8);
   return (x >> 16) | (x << 16);
 }
+// GLSL's findMSB of an unsigned word: the index of its highest set bit, -1 for 0.
+inline int findMSB(uint x) { return x == 0u ? -1 : 31 - std::countl_zero(x); }
 }  // namespace sst
 
 #define SST_BEGIN namespace sst {

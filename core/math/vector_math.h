@@ -53,6 +53,15 @@ SST_FUNC float luminance(vec3 c) {
   return r;
 }
 
+// Component-wise minimum and maximum as glm computes them, (y < x) ? y : x and (x < y) ? y : x:
+// GLSL's min/max may return either of -0 and +0 when they compare equal.
+SST_FUNC vec3 min3(vec3 x, vec3 y) {
+  return vec3(y.x < x.x ? y.x : x.x, y.y < x.y ? y.y : x.y, y.z < x.z ? y.z : x.z);
+}
+SST_FUNC vec3 max3(vec3 x, vec3 y) {
+  return vec3(x.x < y.x ? y.x : x.x, x.y < y.y ? y.y : x.y, x.z < y.z ? y.z : x.z);
+}
+
 SST_FUNC float max_component(vec3 v) { return max(v.x, max(v.y, v.z)); }
 
 SST_FUNC bool is_finite(float x) { return !isinf(x) && !isnan(x); }

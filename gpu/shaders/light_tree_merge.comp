@@ -4,7 +4,7 @@
 // core/lighttree/radix_tree_builder.cpp's merge_radix_tree does across its chunks: one invocation
 // per sorted position i writes leaf first_leaf + i (make_leaf of VPL ids[i]) and climbs; at each
 // internal node an atomic counter stops the first child to arrive, the second merges the node
-// (merge_children, light_tree_substitute.glsl) and goes on. Which child is left is the node's,
+// (merge_children, core/lighttree/substitute.h) and goes on. Which child is left is the node's,
 // not the arrival order's, so the tree does not depend on scheduling. A climb is at most 64
 // nodes long (the radix tree's height is bounded by the key's 64 bits).
 //
@@ -13,7 +13,7 @@
 // the hierarchy pass), 4 LightNode nodes[]. Push: count (VPLs), first_leaf, v_min, sigma_max_abs.
 #include "core/manylight/many_light_layout.h"
 #include "core/lighttree/light_tree_build_layout.h"
-#include "gpu/shaders/light_tree_substitute.glsl"
+#include "core/lighttree/substitute.h"
 
 // One invocation per workgroup: lavapipe (llvmpipe, LLVM 15) runs a workgroup's invocations as
 // SIMD lanes and mis-executes the branch on atomicAdd's result when lanes diverge in the climb

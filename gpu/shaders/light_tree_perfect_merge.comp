@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// One level of the GPU perfect (heap) light tree: the twin of merge_range in
-// core/lighttree/perfect_tree_builder.cpp. Parent first_leaf + i (a node of the level
+// One level of the GPU perfect (heap) light tree, as core/lighttree/perfect_tree_builder.cpp
+// merges it level by level above its subtrees. Parent first_leaf + i (a node of the level
 // [first_leaf, 2 first_leaf)) is merge_children of nodes 2p and 2p + 1, the level below, written
 // by the previous dispatch. No loops and no atomics: every node depends only on its children, so
 // the result is the CPU's whatever the scheduling.
@@ -12,7 +12,7 @@
 // v_min, sigma_max_abs.
 #include "core/manylight/many_light_layout.h"
 #include "core/lighttree/light_tree_build_layout.h"
-#include "gpu/shaders/light_tree_substitute.glsl"
+#include "core/lighttree/substitute.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) buffer Nodes { LightNode nodes[]; };

@@ -8,7 +8,7 @@
 //
 // Bindings: 0 uvec2 keys[], 1 uint counts[LTB_RADIX * tile_count]. Push: count, shift, tile_count.
 #include "core/lighttree/light_tree_build_layout.h"
-#include "gpu/shaders/light_tree_sort.glsl"
+#include "core/lighttree/radix_digit.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) readonly buffer Keys { uvec2 keys[]; };
@@ -21,7 +21,7 @@ void main() {
   if (tile >= ltb.tile_count) return;  // a spare group of a two-row dispatch (uniform per group)
   histogram[local] = 0u;
   barrier();
-  if (i < ltb.count) atomicAdd(histogram[key_digit(keys[i], ltb.shift)], 1u);
+  if (i < ltb.count) atomicAdd(histogram[radix_digit(keys[i], ltb.shift, LTB_RADIX - 1u)], 1u);
   barrier();
   counts[local * ltb.tile_count + tile] = histogram[local];
 }

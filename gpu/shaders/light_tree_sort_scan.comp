@@ -2,10 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // Radix sort of the GPU light-tree build, pass step 2 of 3: one workgroup per digit turns its row
 // of per-tile counts into exclusive offsets within the digit, and writes the digit's total (the
-// scatter adds the totals of the smaller digits). The twin of exclusive_offsets in
-// core/lighttree/radix_sort.cpp. Each invocation scans a run of ceil(tile_count / 256) counts:
-// short loops however many VPLs there are (lavapipe ends an invocation's loops after 65535
-// iterations; 2^25 VPLs make runs of 512).
+// scatter adds the totals of the smaller digits), the offsets exclusive_offsets in
+// core/lighttree/radix_sort.cpp computes for its blocks. Each invocation scans a run of
+// ceil(tile_count / 256) counts: short loops however many VPLs there are (lavapipe ends an
+// invocation's loops after 65535 iterations; 2^25 VPLs make runs of 512).
 //
 // Bindings: 0 uint counts[LTB_RADIX * tile_count] (in place), 1 uint digit_totals[LTB_RADIX].
 // Push: tile_count. Dispatch: LTB_RADIX workgroups.

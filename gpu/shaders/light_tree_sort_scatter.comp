@@ -9,7 +9,7 @@
 // Bindings: 0 uvec2 keys_in[], 1 uint ids_in[], 2 uint counts[] (scanned), 3 uint digit_totals[],
 // 4 uvec2 keys_out[], 5 uint ids_out[]. Push: count, shift, tile_count.
 #include "core/lighttree/light_tree_build_layout.h"
-#include "gpu/shaders/light_tree_sort.glsl"
+#include "core/lighttree/radix_digit.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) readonly buffer KeysIn { uvec2 keys_in[]; };
@@ -40,7 +40,7 @@ void main() {
   digit_base[local] = base;
   bool in_range = i < ltb.count;
   uvec2 key = in_range ? keys_in[i] : uvec2(0u);
-  uint digit = in_range ? key_digit(key, ltb.shift) : 0xFFFFFFFFu;
+  uint digit = in_range ? radix_digit(key, ltb.shift, LTB_RADIX - 1u) : 0xFFFFFFFFu;
   tile_digits[local] = digit;
   barrier();
   if (!in_range) return;

@@ -19,9 +19,7 @@ constexpr SubstituteThresholds kThresholds{0.5f, 0.1f};
 LightNode leaf(vec3 p, vec3 n, float grey) { return make_leaf({p, n, vec3(grey)}, 0, kThresholds); }
 
 LightNode merged(const LightNode& a, const LightNode& b, SubstituteThresholds t = kThresholds) {
-  LightNode parent;
-  merge_children(parent, a, 1, b, 2, t);
-  return parent;
+  return merge_children(a, 1, b, 2, t);
 }
 
 TEST(Sst, TwoLeavesFollowEquationsOneToThree) {

@@ -42,7 +42,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   sampler.set_tree_builder({});
 
   const SamplerInputs& in = sampler.inputs();
-  auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<GpuManyLightInputs>(gpu.vulkan(), vpls, in); });
+  auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<GpuManyLightInputs>(gpu.vulkan(), in); });
   auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu); });
   ManyLightPassOutput out = timer.time("sampling", [&] {
     return render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,

@@ -2,7 +2,7 @@
 
 namespace sst::gpu {
 
-std::vector<GpuVpl> pack_vpls(const VplSet& vpls) {
+std::vector<GpuVpl> pack_vpls(std::span<const Vpl> vpls) {
   std::vector<GpuVpl> out(vpls.size());
   for (size_t i = 0; i < vpls.size(); ++i) {
     out[i] = {};
@@ -14,11 +14,9 @@ std::vector<GpuVpl> pack_vpls(const VplSet& vpls) {
 }
 
 
-GpuManyLightInputs::GpuManyLightInputs(const VulkanContext& context, const VplSet& vpls,
-                                       const SamplerInputs& inputs)
+GpuManyLightInputs::GpuManyLightInputs(const VulkanContext& context, const SamplerInputs& inputs)
     : params_(inputs.params) {
-  std::vector<GpuVpl> packed = pack_vpls(vpls);
-  params_.vpl_count = uint32_t(packed.size());
+  std::vector<GpuVpl> packed = pack_vpls(inputs.vpls);
   params_buffer_ = upload_buffer(context, std::span<const SamplerParams>(&params_, 1), "sampler parameters");
   vpls_ = upload_buffer(context, std::span<const GpuVpl>(packed), "sampler VPLs");
   nodes_ = upload_buffer(context, inputs.nodes, "sampler tree nodes");

@@ -6,6 +6,7 @@
 #pragma once
 #include <cstddef>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/manylight/sampler_inputs.h"
@@ -14,7 +15,7 @@
 namespace sst::gpu {
 
 // VPLs in GPU layout, index for index.
-std::vector<GpuVpl> pack_vpls(const VplSet& vpls);
+std::vector<GpuVpl> pack_vpls(std::span<const Vpl> vpls);
 
 }  // namespace sst::gpu
 
@@ -31,7 +32,7 @@ class GpuManyLightInputs {
  public:
   static constexpr uint32_t kBufferCount = kManyLightBufferCount;
 
-  GpuManyLightInputs(const VulkanContext& context, const VplSet& vpls, const SamplerInputs& inputs);
+  GpuManyLightInputs(const VulkanContext& context, const SamplerInputs& inputs);
   GpuManyLightInputs(const GpuManyLightInputs&) = delete;
   GpuManyLightInputs& operator=(const GpuManyLightInputs&) = delete;
 

@@ -177,7 +177,7 @@ std::vector<IndirectTestPoint> pack_points(const TestFrame& f) {
 
 std::vector<IndirectTestResult> run_gpu(const TestFrame& f, const SamplerInputs& inputs) {
   const VulkanContext& context = vulkan();
-  GpuManyLightInputs ml(context, f.vpls, inputs);
+  GpuManyLightInputs ml(context, inputs);
   GpuBvh bvh(context, f.bvh);
   std::vector<IndirectTestPoint> points = pack_points(f);
   GpuBuffer point_buffer(context, points.size() * sizeof(IndirectTestPoint));

@@ -1,5 +1,8 @@
 #include "gpu/many_light_pass.h"
 
+#include <algorithm>
+
+#include "core/accel/bvh_layout.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/frame_params.h"
 #include "gpu/sample_chunks.h"
@@ -8,12 +11,7 @@
 namespace sst::gpu {
 namespace {
 
-struct ManyLightPush {
-  glsl::FrameParams frame;
-  float ray_epsilon;
-  uint32_t diffuse_only;
-};
-static_assert(sizeof(ManyLightPush) == 88);
+using glsl::ManyLightPush;
 
 // ManyLightMethod::render's per-pixel epilogue, from the sums.
 void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutput& frame, ManyLightPassOutput& out) {
@@ -40,7 +38,7 @@ void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutp
 
 }  // namespace
 
-constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + kManyLightBufferCount + 2;
+constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + kManyLightBufferCount + 4;
 
 std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu) {
   return std::make_unique<ComputePipeline>(gpu.vulkan(), "many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)));
@@ -57,34 +55,87 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
                                                                std::to_string(width) + "x" + std::to_string(height) +
                                                                " image, pixels");
   GpuBuffer& texels = *texel_buffer;
-  GpuBuffer histogram(vk, 65 * sizeof(uint32_t));
-  std::vector<uint32_t> zeros(65, 0);
-  histogram.upload(std::span<const uint32_t>(zeros));
+  GpuBuffer dispatch_words(vk, ML_DISPATCH_WORDS * sizeof(uint32_t));
+  std::vector<uint32_t> words(ML_DISPATCH_WORDS, 0);
+  dispatch_words.upload(std::span<const uint32_t>(words));
+
+  // An exhaustive sum over many VPLs exceeds lavapipe's loop limit in one invocation: there it
+  // is split into slices of VPLs, one dispatch each (ManyLightPush).
+  const bool lavapipe = vk.info().type == "cpu";
+  const uint32_t vpl_count = inputs.params().vpl_count;
+  const bool slice_vpls = lavapipe && inputs.params().method == ML_METHOD_EXHAUSTIVE && vpl_count > 0;
+  const size_t slice_count = slice_vpls ? pixels : 1;
+  std::unique_ptr<GpuBuffer> slices_a = make_buffer(vk, slice_count, sizeof(glsl::ManyLightSlice),
+                                                    "sampling: running sums of the VPL slices, pixels");
+  std::unique_ptr<GpuBuffer> slices_b = make_buffer(vk, slice_count, sizeof(glsl::ManyLightSlice),
+                                                    "sampling: running sums of the VPL slices, pixels");
 
   std::vector<const GpuBuffer*> buffers = gpu.scene_buffers();
   for (const GpuBuffer* b : inputs.buffers()) buffers.push_back(b);
   buffers.push_back(&texels);
-  buffers.push_back(&histogram);
+  buffers.push_back(&dispatch_words);
+  const size_t slices_in = buffers.size();
+  buffers.push_back(slices_a.get());
+  buffers.push_back(slices_b.get());
 
   ManyLightPassOutput out;
 
-  ManyLightPush push{frame_params(camera, width, height, seed), gpu.ray_epsilon(), diffuse_only ? 1u : 0u};
+  ManyLightPush push{frame_params(camera, width, height, seed), gpu.ray_epsilon(), diffuse_only ? 1u : 0u, 0u,
+                     0xFFFFFFFFu, ML_SLICE_FIRST | ML_SLICE_LAST};
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;
-  const bool lavapipe = vk.info().type == "cpu";
-  for (SampleChunks chunks(spp, lavapipe); !chunks.done();) {
-    push.frame.sample_offset = uint32_t(chunks.offset());
-    push.frame.spp = uint32_t(chunks.size());
-    double ms = pipeline.dispatch(buffers, &push, groups_x, groups_y);
-    out.gpu_ms += ms;
-    ++out.dispatches;
-    chunks.advance(ms);
+  if (!slice_vpls) {
+    for (SampleChunks chunks(spp, lavapipe); !chunks.done();) {
+      push.frame.sample_offset = uint32_t(chunks.offset());
+      push.frame.spp = uint32_t(chunks.size());
+      double ms = pipeline.dispatch(buffers, &push, groups_x, groups_y);
+      out.gpu_ms += ms;
+      ++out.dispatches;
+      chunks.advance(ms);
+    }
+    dispatch_words.download(std::span<uint32_t>(words));
+  } else {
+    // Each slice is sized from the loop iterations the last one took, to half the budget; a slice
+    // that came near the limit anyway is undone (the texels and words saved before it) and
+    // retried at half its size.
+    uint32_t slice_size = 32;
+    std::vector<glsl::ManyLightTexel> saved(pixels);
+    push.frame.spp = 1;
+    for (int sample = 0; sample < spp; ++sample) {
+      push.frame.sample_offset = uint32_t(sample);
+      for (uint32_t first = 0; first < vpl_count;) {
+        uint32_t end = first + std::min(slice_size, vpl_count - first);
+        push.vpl_first = first;
+        push.vpl_end = end;
+        push.slice_flags = (first == 0 ? ML_SLICE_FIRST : 0u) | (end == vpl_count ? ML_SLICE_LAST : 0u);
+        if (sample > 0 || first > 0) texels.download(std::span<glsl::ManyLightTexel>(saved));
+        words[ML_DISPATCH_BUDGET_HITS] = 0;
+        words[ML_DISPATCH_MAX_ITERATIONS] = 0;
+        dispatch_words.upload(std::span<const uint32_t>(words));
+        out.gpu_ms += pipeline.dispatch(buffers, &push, groups_x, groups_y);
+        ++out.dispatches;
+        std::vector<uint32_t> after(ML_DISPATCH_WORDS);
+        dispatch_words.download(std::span<uint32_t>(after));
+        if (after[ML_DISPATCH_BUDGET_HITS] > 0) {
+          if (end - first == 1)
+            throw Error("one VPL's shadow rays need more shader loop iterations than lavapipe runs (65535 per "
+                        "invocation): use a GPU, or --backend cpu");
+          if (sample > 0 || first > 0) texels.upload(std::span<const glsl::ManyLightTexel>(saved));
+          slice_size = std::max(1u, (end - first) / 2);
+          continue;
+        }
+        words = after;
+        uint32_t iterations = std::max(1u, after[ML_DISPATCH_MAX_ITERATIONS]);
+        double fit = double(end - first) * (0.5 * BVH_LAVAPIPE_LOOP_BUDGET) / double(iterations);
+        slice_size = uint32_t(std::clamp(fit, 1.0, 4.0 * double(end - first)));
+        std::swap(buffers[slices_in], buffers[slices_in + 1]);
+        first = end;
+      }
+    }
   }
 
   std::vector<glsl::ManyLightTexel> sums(pixels);
   texels.download(std::span<glsl::ManyLightTexel>(sums));
-  std::vector<uint32_t> bins(65);
-  histogram.download(std::span<uint32_t>(bins));
-  for (size_t i = 0; i < bins.size(); ++i) out.depth_histogram[i] = bins[i];
+  for (size_t i = 0; i < out.depth_histogram.size(); ++i) out.depth_histogram[i] = words[i];
   out.variance = Image(width, height);
   out.traversal_depth = Image(width, height, 1);
   for (int y = 0; y < height; ++y)
@@ -92,7 +143,7 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
   if (lavapipe && out.loop_budget_hits > 0)
     throw Error(std::to_string(out.loop_budget_hits) +
                 " pixel samples needed more shader loop iterations than lavapipe runs (65535 per invocation); "
-                "its image would be wrong: use fewer VPLs for 'exhaustive', or a GPU, or --backend cpu");
+                "its image would be wrong: use a GPU, or --backend cpu");
   return out;
 }
 

@@ -79,6 +79,12 @@ struct BvhHit {
   float v;
 };
 
+// lavapipe ends all loops of a shader invocation after 65535 iterations (bvh_traverse.h). This
+// is the loop iterations of one SIMD group (subgroup) past which that limit is near: a group's
+// loops go on while any of its lanes is active, so the group iterates at most the sum of its
+// lanes' counts; the margin below 65535 is for the shaders' other, short loops.
+#define BVH_LAVAPIPE_LOOP_BUDGET 64000u
+
 #ifdef __cplusplus
 static_assert(sizeof(BvhNode) == 32);
 static_assert(offsetof(BvhNode, bounds_min) == 0);

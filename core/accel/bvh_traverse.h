@@ -214,10 +214,6 @@ BVH_FUNC bool bvh_intersect_triangle(BVH_IN(BvhRayPre) ray, BVH_IN(BvhTriangle) 
 uint bvh_loop_iterations = 0u;
 #define BVH_COUNT_ITERATION() ++bvh_loop_iterations
 #endif
-// The loop iterations of one SIMD group (subgroup) past which lavapipe's limit is near: a group's
-// loops go on while any of its lanes is active, so the group iterates at most the sum of its lanes'
-// counts; the margin below 65535 is for the shaders' other, short loops.
-#define BVH_LAVAPIPE_LOOP_BUDGET 64000u
 
 // The one traversal behind both queries: the closest hit with tmin <= t < tmax, or, when
 // `any_hit`, the first hit found (its t need not be the closest). A stack overflow is reported as

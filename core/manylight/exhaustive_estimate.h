@@ -7,10 +7,13 @@
 
 SST_BEGIN
 
-// VPLs [first, end) of the set: one call covers all of them, or, where a device bounds a
-// shader's loop iterations, one slice per dispatch, the slices' sums added in order.
-SST_FUNC IndirectEstimate estimate_exhaustive_range(ML_CTX_PARAM SST_IN(ShadingPoint) sp, uint first, uint end) {
+// VPLs [first, end) of the set added to `sum`, the sum of the VPLs before `first`: one call covers
+// all of them, or, where a device bounds a shader's loop iterations (lavapipe), one slice per
+// dispatch continues the previous slice's sum, so that the result has the bits of one call.
+SST_FUNC IndirectEstimate estimate_exhaustive_range(ML_CTX_PARAM SST_IN(ShadingPoint) sp, uint first, uint end,
+                                                    vec3 sum) {
   IndirectEstimate e = indirect_estimate_zero();
+  e.value = sum;
   for (uint j = first; j < end && j < ML_PARAMS.vpl_count; ++j) {
     ML_COUNT_ITERATION();
     vec3 c = shade_vpl(ML_CTX sp, ML_VPL(j), e.shadow_rays);
@@ -20,7 +23,7 @@ SST_FUNC IndirectEstimate estimate_exhaustive_range(ML_CTX_PARAM SST_IN(ShadingP
 }
 
 SST_FUNC IndirectEstimate estimate_exhaustive(ML_CTX_PARAM SST_IN(ShadingPoint) sp) {
-  return estimate_exhaustive_range(ML_CTX sp, 0u, ML_PARAMS.vpl_count);
+  return estimate_exhaustive_range(ML_CTX sp, 0u, ML_PARAMS.vpl_count, vec3(0.0f));
 }
 
 SST_END

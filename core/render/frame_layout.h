@@ -61,7 +61,38 @@ struct ManyLightTexel {
   uint loop_budget_hits;  // samples after which the invocation was past BVH_LAVAPIPE_LOOP_BUDGET
 };
 
+// The push constants of one dispatch of the many-light sampling pass. An exhaustive sum over more
+// VPLs than lavapipe's loop limit lets one invocation shade is split into slices of VPLs
+// [vpl_first, vpl_end), one dispatch each, every slice continuing the previous slice's sum
+// (ManyLightSlice) for the same pixel sample: the first slice also takes the camera ray's direct
+// light and counts, the last one adds the finished estimate to the pixel's sums.
+#define ML_SLICE_FIRST 1u
+#define ML_SLICE_LAST 2u
+struct ManyLightPush {
+  FrameParams frame;
+  float scene_epsilon;  // SCENE_RAY_EPSILON of core/accel/ray_offset.h
+  uint diffuse_only;
+  uint vpl_first;       // the VPLs of this dispatch's slice (0, ~0u: all)
+  uint vpl_end;
+  uint slice_flags;     // ML_SLICE_FIRST | ML_SLICE_LAST; both for an unsliced dispatch
+};
+
+// The running sum of one pixel sample's exhaustive estimate between slices.
+struct ManyLightSlice {
+  vec3 sum;
+  uint reserved;
+};
+
+// The many-light pass's counters of one dispatch (after the 65 bins of its traversal-depth
+// histogram): how many pixel samples came near lavapipe's loop limit, and the most loop
+// iterations a subgroup ran, from which the next slice is sized.
+#define ML_DISPATCH_BUDGET_HITS 65u
+#define ML_DISPATCH_MAX_ITERATIONS 66u
+#define ML_DISPATCH_WORDS 67u
+
 #ifdef __cplusplus
+static_assert(sizeof(ManyLightPush) == 100 && offsetof(ManyLightPush, vpl_first) == 88);
+static_assert(sizeof(ManyLightSlice) == 16);
 static_assert(sizeof(ManyLightTexel) == 96);
 static_assert(offsetof(ManyLightTexel, indirect) == 16 && offsetof(ManyLightTexel, indirect2) == 32);
 static_assert(offsetof(ManyLightTexel, albedo) == 48 && offsetof(ManyLightTexel, normal) == 64);

@@ -1,14 +1,17 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 // The sampling stage of every VPL method on the GPU: the twin of the pixel loop of
 // core/manylight/many_light_method.cpp. Per pixel and sample: the jittered camera ray, the direct
 // light exactly as `pt` with max_bounces = 0 computes it (path_trace.glsl), then one indirect
 // estimate from the frame's sampler at the first hit (indirect_sampler.glsl), summed into the
 // pixel's ManyLightTexel. A frame is rendered in dispatches of consecutive sample indices
 // [sample_offset, sample_offset + spp); the first overwrites the texels, the rest add to them.
+// On lavapipe an exhaustive sum may be split further into slices of VPLs (ManyLightPush).
 // Bindings: 0..4 scene, 5..6 BVH, 7..11 lights, 12..18 the sampler's inputs (MANY_LIGHT_BUFFERS),
-// 19 the texels, 20 the traversal-depth histogram (65 bins, the last one "64 or more").
+// 19 the texels, 20 the dispatch's words (ML_DISPATCH_*: the traversal-depth histogram, 65 bins,
+// the last one "64 or more", then its counters), 21 and 22 the slices' running sums in and out.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
@@ -20,15 +23,15 @@ layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_trian
 LIGHT_BUFFERS(7)
 MANY_LIGHT_BUFFERS(12)
 layout(std430, binding = 19) buffer Texels { ManyLightTexel texels[]; };
-layout(std430, binding = 20) buffer Histogram { uint depth_histogram[]; };
-layout(push_constant) uniform Push {
-  FrameParams frame;
-  float scene_epsilon;  // SCENE_RAY_EPSILON of core/accel/ray_offset.h
-  uint diffuse_only;
-};
+layout(std430, binding = 20) buffer DispatchWords { uint dispatch_words[]; };
+// Two buffers, swapped after each slice: reading and writing one buffer would make glslang's
+// `precise` propagation cycle through it and exhaust memory.
+layout(std430, binding = 21) readonly buffer SlicesIn { ManyLightSlice slices_in[]; };
+layout(std430, binding = 22) writeonly buffer SlicesOut { ManyLightSlice slices_out[]; };
+layout(push_constant) uniform Push { ManyLightPush push; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
-#define SCENE_RAY_EPSILON scene_epsilon
+#define SCENE_RAY_EPSILON push.scene_epsilon
 #include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/surface.glsl"
 #include "core/rng/sobol_sampler.h"
@@ -45,7 +48,7 @@ ShadingPoint shading_point(Surface s, vec3 dir, uvec2 xy) {
   sp.ng = s.ng;
   sp.basis = basis_from_normal(s.ns);
   sp.wo = to_local(sp.basis, -normalize3(dir));
-  sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only != 0u);
+  sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, push.diffuse_only != 0u);
   sp.x = int(xy.x);
   sp.y = int(xy.y);
   return sp;
@@ -72,35 +75,56 @@ ManyLightTexel empty_texel() {
 
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
-  if (xy.x >= frame.width || xy.y >= frame.height) return;
-  uint pixel = xy.y * frame.width + xy.x;
+  if (xy.x >= push.frame.width || xy.y >= push.frame.height) return;
+  uint pixel = xy.y * push.frame.width + xy.x;
+  bool first_slice = (push.slice_flags & ML_SLICE_FIRST) != 0u;
+  bool last_slice = (push.slice_flags & ML_SLICE_LAST) != 0u;
   ManyLightTexel acc = empty_texel();
-  if (frame.sample_offset != 0u) acc = texels[pixel];
-  for (uint k = 0u; k < frame.spp; ++k) {
-    PixelSampler ps = pixel_sampler(frame.seed, pixel, frame.sample_offset + k);
+  if (push.frame.sample_offset != 0u || !first_slice) acc = texels[pixel];
+  for (uint k = 0u; k < push.frame.spp; ++k) {
+    PixelSampler ps = pixel_sampler(push.frame.seed, pixel, push.frame.sample_offset + k);
     vec2 jitter = pixel_sampler_get2d(ps);
     precise float px = float(xy.x) + jitter.x, py = float(xy.y) + jitter.y;
-    vec3 dir = camera_direction(frame, px, py);
+    vec3 dir = camera_direction(push.frame, px, py);
     PathCounters counters = path_counters();
     Surface hit;
     bool has_hit;
-    PathSample d = trace_path(frame.eye, dir, 0, 0, diffuse_only != 0u, ps, counters, hit, has_hit);
-    acc.primary_rays += counters.primary_rays;
-    acc.shadow_rays += counters.shadow_rays;
-    acc.bounce_rays += counters.bounce_rays;
-    ++acc.samples;
+    PathSample d = trace_path(push.frame.eye, dir, 0, 0, push.diffuse_only != 0u, ps, counters, hit, has_hit);
+    // Every slice retraces the camera ray (the same bits each time); the first one counts it.
+    if (first_slice) {
+      acc.primary_rays += counters.primary_rays;
+      acc.shadow_rays += counters.shadow_rays;
+      acc.bounce_rays += counters.bounce_rays;
+      ++acc.samples;
+    }
     vec3 value = vec3(0.0);
     if (d.depth > 0.0) {
-      IndirectEstimate e = estimate_indirect(shading_point(hit, dir, xy), ps);
+      ShadingPoint sp = shading_point(hit, dir, xy);
+      IndirectEstimate e;
+      if (first_slice && last_slice) {
+        e = estimate_indirect(sp, ps);
+      } else {
+        vec3 sum = first_slice ? vec3(0.0) : slices_in[pixel].sum;
+        e = estimate_exhaustive_range(sp, push.vpl_first, push.vpl_end, sum);
+        if (!last_slice) slices_out[pixel].sum = e.value;
+      }
       acc.shadow_rays += e.shadow_rays;
-      acc.nodes += e.nodes_visited;
-      ++acc.indirect_samples;
-      atomicAdd(depth_histogram[min(e.nodes_visited, 64u)], 1u);
-      value = e.value;
+      if (last_slice) {
+        acc.nodes += e.nodes_visited;
+        ++acc.indirect_samples;
+        atomicAdd(dispatch_words[min(e.nodes_visited, 64u)], 1u);
+        value = e.value;
+      }
     }
     // The lanes of a subgroup share lavapipe's loop limit, and the subgroup's iterations are at
     // most the sum of its lanes': over the budget by that bound, the sample may be cut short.
-    if (subgroupAdd(bvh_loop_iterations) > BVH_LAVAPIPE_LOOP_BUDGET) ++acc.loop_budget_hits;
+    uint group_iterations = subgroupAdd(bvh_loop_iterations);
+    if (subgroupElect()) atomicMax(dispatch_words[ML_DISPATCH_MAX_ITERATIONS], group_iterations);
+    if (group_iterations > BVH_LAVAPIPE_LOOP_BUDGET) {
+      ++acc.loop_budget_hits;
+      atomicAdd(dispatch_words[ML_DISPATCH_BUDGET_HITS], 1u);
+    }
+    if (!last_slice) continue;
     if (!is_finite3(d.direct) || !is_finite3(value)) {
       ++acc.nonfinite;
       continue;

@@ -177,5 +177,31 @@ TEST(VulkanBackend, RecordNamesTheDeviceAndWhereEachStageRan) {
 }
 
 }  // namespace
+// An exhaustive sum over more VPLs than lavapipe's loop limit lets one invocation shade is split
+// into slices of VPLs, one dispatch each; the slices continue one running sum, so the image keeps
+// the CPU's bits.
+TEST(VulkanBackend, ExhaustiveOverManyVplsMatchesTheCpu) {
+  SKIP_WITHOUT_GPU("many_light");
+  Scene scene = load_default_scene();
+  Case c{"exhaustive", {{"vpls", 4096}}, Agreement::exact, Agreement::exact};
+  RenderOptions options;
+  options.method = c.method;
+  options.width = 20;
+  options.spp = 1;
+  options.seed = 7;
+  options.accel = "flat";
+  RenderResult cpu = render_frame(scene, options, c.params);
+  options.backend = "vulkan";
+  RenderResult gpu = render_frame(scene, options, c.params);
+  double color = relative_rmse(gpu.frame.color, cpu.frame.color);
+  int dispatches = gpu.frame.method_counters["gpu"]["sampling_dispatches"];
+  std::printf("exhaustive, 4096 VPLs: %d sampling dispatches, relative RMSE vulkan vs cpu %.2e\n", dispatches, color);
+  EXPECT_LT(color, 1e-3);
+  EXPECT_EQ(gpu.frame.counters.shadow_rays, cpu.frame.counters.shadow_rays);
+  EXPECT_EQ(gpu.frame.counters.nonfinite_samples, 0u);
+  if (gpu.device.value("type", "") == "cpu") EXPECT_GT(dispatches, 1);
+}
+
+
 }  // namespace sst
 #endif  // SST_HAVE_VULKAN

@@ -1,4 +1,4 @@
-// The first-hit (G-buffer) stage on the GPU (issue 5): camera rays through the flat BVH, surfaces
+// The first-hit (G-buffer) stage on the GPU: camera rays through the flat BVH, surfaces
 // evaluated as on the CPU, averaged per pixel into the AOVs of FrameOutput (albedo, normal, depth)
 // and the emission the camera sees. The methods trace their own camera rays inside their passes
 // (pt.comp, many_light.comp) with the same code; this pass checks that code against the CPU's AOVs.

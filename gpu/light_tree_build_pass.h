@@ -1,4 +1,4 @@
-// The light tree built on the GPU (issue 5): the twin of LightTreeBuilder::build for trees "radix"
+// The light tree built on the GPU: the twin of LightTreeBuilder::build for trees "radix"
 // and "perfect" (core/lighttree/light_tree.cpp), producing the same LightTree bit for bit (nodes
 // memcmp-equal, the same header fields) where the device's float division and sqrt are correctly
 // rounded, as on lavapipe. The stages are the CPU's, one compute pass each:

@@ -15,7 +15,7 @@ namespace {
 constexpr std::array<const char*, 10> kPalette{"#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f",
                                                "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
 constexpr int kShapes = 5;       // circle, square, triangle, diamond, inverted triangle
-constexpr double kInset = 10.0;  // pixels between the frame and the outermost data point
+constexpr double kInset = 10.0;  // pixels between the plot border and the outermost data point
 
 std::string num(double v, int decimals = 1) {
   char buf[64];
@@ -69,7 +69,7 @@ Axis make_axis(double lo, double hi, AxisScale scale) {
     hi = scale == AxisScale::log10 ? 10.0 : 1.0;
   }
   if (scale == AxisScale::log10) {
-    // 4% of the span (at least 0.02 decades) each side, so that end points do not sit on the frame.
+    // 4% of the span (at least 0.02 decades) each side, so that end points do not sit on the border.
     const double pad = std::pow(10.0, std::max(0.02, 0.04 * std::log10(hi / lo)));
     a.lo = lo / pad;
     a.hi = hi * pad;
@@ -101,8 +101,8 @@ Axis axis_of(const Plot& plot, bool is_x) {
   return make_axis(lo, hi, is_x ? plot.x.scale : plot.y.scale);
 }
 
-// Pixel geometry of the plot area; data are mapped kInset pixels inside the frame.
-struct Frame {
+// Pixel geometry of the plot area; data are mapped kInset pixels inside its border.
+struct PlotArea {
   double left, top, right, bottom;
   const Axis* x;
   const Axis* y;
@@ -176,7 +176,7 @@ std::vector<double> labelled_ticks(const Axis& axis, ToPixel pixel, bool horizon
   return {axis.ticks.front(), axis.ticks.back()};
 }
 
-std::string grid_and_ticks(const Frame& f) {
+std::string grid_and_ticks(const PlotArea& f) {
   std::string s = "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
   for (double t : f.x->ticks)
     s += "<line x1=\"" + num(f.px(t)) + "\" y1=\"" + num(f.top) + "\" x2=\"" + num(f.px(t)) + "\" y2=\"" +
@@ -201,7 +201,7 @@ size_t style_of(const Plot& plot, size_t index) {
   return style >= 0 ? size_t(style) : index;
 }
 
-std::string series_svg(const Plot& plot, const Frame& f, size_t index) {
+std::string series_svg(const Plot& plot, const PlotArea& f, size_t index) {
   const PlotSeries& series = plot.series[index];
   const size_t style = style_of(plot, index);
   const std::string colour = kPalette[style % kPalette.size()];
@@ -220,7 +220,7 @@ std::string series_svg(const Plot& plot, const Frame& f, size_t index) {
   return s + markers + "</g>\n";
 }
 
-std::string highlight_svg(const Plot& plot, const Frame& f) {
+std::string highlight_svg(const Plot& plot, const PlotArea& f) {
   std::vector<std::pair<double, double>> xy;
   for (const PlotPoint& p : plot.highlight.points)
     if (drawable(p, plot)) xy.emplace_back(f.px(p.x), f.py(p.y));
@@ -355,7 +355,7 @@ size_t drawable_point_count(const Plot& plot) {
 std::string render_svg(const Plot& plot) {
   const Axis x = axis_of(plot, true), y = axis_of(plot, false);
   const double legend = legend_width(plot);
-  const Frame f{68.0, plot.title.empty() ? 14.0 : 34.0, plot.width - 16.0 - legend, plot.height - 46.0, &x, &y};
+  const PlotArea f{68.0, plot.title.empty() ? 14.0 : 34.0, plot.width - 16.0 - legend, plot.height - 46.0, &x, &y};
   const std::string w = std::to_string(plot.width), h = std::to_string(plot.height);
   std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"" + w + "\" height=\"" + h +
                   "\" viewBox=\"0 0 " + w + " " + h + "\" font-family=\"sans-serif\" font-size=\"12\">\n";

@@ -229,14 +229,14 @@ struct TextureKey {
 class GltfConverter {
  public:
   GltfConverter(const tinygltf::Model& model, const std::string& file, Scene& scene)
-      : m_(model), file_(file), scene_(scene) {}
+      : model_(model), file_(file), scene_(scene) {}
 
   void run() {
     check_extensions();
     note_ignored_features();
     std::vector<Instance> instances = traverse_nodes();
     for (const Instance& inst : instances) {
-      const tinygltf::Node& node = m_.nodes[inst.node];
+      const tinygltf::Node& node = model_.nodes[inst.node];
       if (node.mesh >= 0) add_mesh(inst);
       if (node.camera >= 0) add_camera(inst);
       if (const tinygltf::Value* ext = extension(node.extensions, "KHR_lights_punctual")) add_light(inst, *ext);
@@ -258,28 +258,28 @@ class GltfConverter {
   // ---- extensions and features we do not model ----
 
   void check_extensions() {
-    for (const std::string& name : m_.extensionsRequired) {
+    for (const std::string& name : model_.extensionsRequired) {
       if (!contains(kAcceptedRequiredExtensions, name))
         fail("requires unsupported extension " + name);
       if (name == "KHR_texture_transform") texture_transform_required_ = true;
     }
-    for (const std::string& name : m_.extensionsUsed) {
+    for (const std::string& name : model_.extensionsUsed) {
       if (name == "KHR_mesh_quantization") quantization_ = true;
       if (!contains(kImplementedExtensions, name) && name != "KHR_texture_transform")
         warnings_.add("extension " + name + " is not supported: ignored");
     }
-    if (contains(m_.extensionsRequired, std::string_view("KHR_mesh_quantization"))) quantization_ = true;
+    if (contains(model_.extensionsRequired, std::string_view("KHR_mesh_quantization"))) quantization_ = true;
   }
 
   void note_ignored_features() {
-    if (!m_.animations.empty()) warnings_.add("animations ignored: the rest pose is rendered");
-    if (!m_.skins.empty()) warnings_.add("skins ignored: the rest pose is rendered");
+    if (!model_.animations.empty()) warnings_.add("animations ignored: the rest pose is rendered");
+    if (!model_.skins.empty()) warnings_.add("skins ignored: the rest pose is rendered");
   }
 
   // ---- node hierarchy ----
 
   glm::dmat4 local_matrix(int index) const {
-    const tinygltf::Node& n = m_.nodes[index];
+    const tinygltf::Node& n = model_.nodes[index];
     std::string what = quoted_name("node", index, n.name);
     glm::dmat4 M(1.0);
     if (!n.matrix.empty()) {
@@ -318,18 +318,18 @@ class GltfConverter {
   }
 
   std::vector<int> root_nodes() const {
-    if (!m_.scenes.empty()) {
-      int s = m_.defaultScene;
-      if (s >= int(m_.scenes.size())) fail("default scene " + std::to_string(s) + " does not exist");
+    if (!model_.scenes.empty()) {
+      int s = model_.defaultScene;
+      if (s >= int(model_.scenes.size())) fail("default scene " + std::to_string(s) + " does not exist");
       if (s < 0) s = 0;
-      return m_.scenes[s].nodes;
+      return model_.scenes[s].nodes;
     }
-    std::vector<char> is_child(m_.nodes.size(), 0);
-    for (const tinygltf::Node& n : m_.nodes)
+    std::vector<char> is_child(model_.nodes.size(), 0);
+    for (const tinygltf::Node& n : model_.nodes)
       for (int c : n.children)
-        if (c >= 0 && size_t(c) < m_.nodes.size()) is_child[c] = 1;
+        if (c >= 0 && size_t(c) < model_.nodes.size()) is_child[c] = 1;
     std::vector<int> roots;
-    for (size_t i = 0; i < m_.nodes.size(); ++i)
+    for (size_t i = 0; i < model_.nodes.size(); ++i)
       if (!is_child[i]) roots.push_back(int(i));
     return roots;
   }
@@ -337,12 +337,12 @@ class GltfConverter {
   // Iterative, so that a deep hierarchy cannot overflow the stack; a path longer than the node
   // count means a cycle. Each node may have one parent (glTF), which bounds the instance count.
   std::vector<Instance> traverse_nodes() const {
-    size_t count = m_.nodes.size();
+    size_t count = model_.nodes.size();
     std::vector<int> parents(count, 0);
     for (size_t i = 0; i < count; ++i)
-      for (int c : m_.nodes[i].children) {
-        if (c < 0 || size_t(c) >= count) fail(quoted_name("node", i, m_.nodes[i].name) + " has missing child " + std::to_string(c));
-        if (++parents[c] > 1) fail(quoted_name("node", c, m_.nodes[c].name) + " has more than one parent");
+      for (int c : model_.nodes[i].children) {
+        if (c < 0 || size_t(c) >= count) fail(quoted_name("node", i, model_.nodes[i].name) + " has missing child " + std::to_string(c));
+        if (++parents[c] > 1) fail(quoted_name("node", c, model_.nodes[c].name) + " has more than one parent");
       }
     std::vector<Instance> out;
     struct Item { int node; glm::dmat4 parent; size_t depth; };
@@ -358,7 +358,7 @@ class GltfConverter {
       if (item.depth > count) fail("node hierarchy has a cycle through node " + std::to_string(item.node));
       glm::dmat4 world = item.parent * local_matrix(item.node);
       out.push_back({item.node, world});
-      const auto& children = m_.nodes[item.node].children;
+      const auto& children = model_.nodes[item.node].children;
       for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
     }
     return out;
@@ -398,13 +398,13 @@ class GltfConverter {
   // every byte is checked to lie inside the view and the view inside its buffer.
   const unsigned char* checked_bytes(int view_index, size_t offset, size_t element, size_t stride, size_t count,
                                      const std::string& what) const {
-    if (view_index < 0 || size_t(view_index) >= m_.bufferViews.size())
+    if (view_index < 0 || size_t(view_index) >= model_.bufferViews.size())
       fail(what + " refers to missing bufferView " + std::to_string(view_index));
-    const tinygltf::BufferView& view = m_.bufferViews[view_index];
+    const tinygltf::BufferView& view = model_.bufferViews[view_index];
     std::string view_name = "bufferView " + std::to_string(view_index);
-    if (view.buffer < 0 || size_t(view.buffer) >= m_.buffers.size())
+    if (view.buffer < 0 || size_t(view.buffer) >= model_.buffers.size())
       fail(view_name + " refers to missing buffer " + std::to_string(view.buffer));
-    const tinygltf::Buffer& buffer = m_.buffers[view.buffer];
+    const tinygltf::Buffer& buffer = model_.buffers[view.buffer];
     if (view.byteOffset > buffer.data.size() || view.byteLength > buffer.data.size() - view.byteOffset)
       fail("buffer " + std::to_string(view.buffer) + " is too short for " + view_name + " (needs " +
            std::to_string(view.byteOffset + view.byteLength) + " bytes, has " + std::to_string(buffer.data.size()) + ")");
@@ -421,8 +421,8 @@ class GltfConverter {
   }
 
   const tinygltf::Accessor& accessor(int index, const std::string& what) const {
-    if (index < 0 || size_t(index) >= m_.accessors.size()) fail(what + " refers to missing accessor " + std::to_string(index));
-    return m_.accessors[index];
+    if (index < 0 || size_t(index) >= model_.accessors.size()) fail(what + " refers to missing accessor " + std::to_string(index));
+    return model_.accessors[index];
   }
 
   // count x components numbers of an accessor, normalisation and sparse substitution applied.
@@ -441,8 +441,8 @@ class GltfConverter {
     const unsigned char* p = nullptr;
     size_t stride = element;
     if (a.bufferView >= 0) {
-      if (size_t(a.bufferView) < m_.bufferViews.size() && m_.bufferViews[a.bufferView].byteStride > 0)
-        stride = m_.bufferViews[a.bufferView].byteStride;
+      if (size_t(a.bufferView) < model_.bufferViews.size() && model_.bufferViews[a.bufferView].byteStride > 0)
+        stride = model_.bufferViews[a.bufferView].byteStride;
       p = checked_bytes(a.bufferView, a.byteOffset, element, stride, a.count, where);
     }
     std::vector<T> out(a.count * components, T(0));
@@ -577,10 +577,10 @@ class GltfConverter {
   }
 
   void add_mesh(const Instance& inst) {
-    int mesh_index = m_.nodes[inst.node].mesh;
-    if (size_t(mesh_index) >= m_.meshes.size())
-      fail(quoted_name("node", inst.node, m_.nodes[inst.node].name) + " refers to missing mesh " + std::to_string(mesh_index));
-    const tinygltf::Mesh& mesh = m_.meshes[mesh_index];
+    int mesh_index = model_.nodes[inst.node].mesh;
+    if (size_t(mesh_index) >= model_.meshes.size())
+      fail(quoted_name("node", inst.node, model_.nodes[inst.node].name) + " refers to missing mesh " + std::to_string(mesh_index));
+    const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
       add_primitive(mesh.primitives[p], inst.world, quoted_name("mesh", mesh_index, mesh.name) + " primitive " + std::to_string(p));
   }
@@ -609,8 +609,8 @@ class GltfConverter {
     }
     if (!prim.targets.empty()) warnings_.add("morph targets ignored: the base shape is rendered");
     int gltf_material = prim.material;
-    if (gltf_material >= int(m_.materials.size())) fail(what + " refers to missing material " + std::to_string(gltf_material));
-    uint32_t material = gltf_material < 0 ? uint32_t(m_.materials.size()) : uint32_t(gltf_material);
+    if (gltf_material >= int(model_.materials.size())) fail(what + " refers to missing material " + std::to_string(gltf_material));
+    uint32_t material = gltf_material < 0 ? uint32_t(model_.materials.size()) : uint32_t(gltf_material);
 
     Attributes at = read_attributes(prim, what);
     std::vector<uvec3> tris = assemble(mode, read_indices(prim, at.count, what), what);
@@ -731,10 +731,10 @@ class GltfConverter {
   static glm::dvec3 world_direction(const glm::dmat4& m, glm::dvec3 local) { return glm::dmat3(m) * local; }
 
   void add_camera(const Instance& inst) {
-    const tinygltf::Node& node = m_.nodes[inst.node];
-    if (size_t(node.camera) >= m_.cameras.size())
+    const tinygltf::Node& node = model_.nodes[inst.node];
+    if (size_t(node.camera) >= model_.cameras.size())
       fail(quoted_name("node", inst.node, node.name) + " refers to missing camera " + std::to_string(node.camera));
-    const tinygltf::Camera& cam = m_.cameras[node.camera];
+    const tinygltf::Camera& cam = model_.cameras[node.camera];
     std::string name = !cam.name.empty() ? cam.name : !node.name.empty() ? node.name : "camera" + std::to_string(node.camera);
     if (cam.type != "perspective") {
       warnings_.add("camera '" + name + "' is " + (cam.type.empty() ? "untyped" : cam.type) + ": skipped (only perspective cameras)");
@@ -763,12 +763,12 @@ class GltfConverter {
   }
 
   void add_light(const Instance& inst, const tinygltf::Value& ext) {
-    const tinygltf::Node& node = m_.nodes[inst.node];
+    const tinygltf::Node& node = model_.nodes[inst.node];
     const tinygltf::Value* index_value = member(ext, "light");
     int index = index_value && index_value->IsNumber() ? index_value->GetNumberAsInt() : -1;
-    if (index < 0 || size_t(index) >= m_.lights.size())
+    if (index < 0 || size_t(index) >= model_.lights.size())
       fail(quoted_name("node", inst.node, node.name) + " refers to missing light " + std::to_string(index));
-    const tinygltf::Light& l = m_.lights[index];
+    const tinygltf::Light& l = model_.lights[index];
     PunctualLight out;
     out.name = !l.name.empty() ? l.name : !node.name.empty() ? node.name : "light" + std::to_string(index);
     std::string what = "light '" + out.name + "'";
@@ -833,9 +833,9 @@ class GltfConverter {
   // ---- materials and textures ----
 
   void build_materials() {
-    std::vector<char> used(m_.materials.size() + 1, 0);
+    std::vector<char> used(model_.materials.size() + 1, 0);
     for (uint32_t m : scene_.triangle_material) used[m] = 1;
-    for (size_t i = 0; i < m_.materials.size(); ++i) scene_.materials.push_back(convert_material(int(i), used[i]));
+    for (size_t i = 0; i < model_.materials.size(); ++i) scene_.materials.push_back(convert_material(int(i), used[i]));
     if (used.back()) {
       Material def;  // glTF's default material: white, metallic 1, roughness 1
       def.name = "default";
@@ -863,7 +863,7 @@ class GltfConverter {
 
   // Unused materials keep their factors but no textures, so that unused images are never read.
   Material convert_material(int index, bool used) {
-    const tinygltf::Material& g = m_.materials[index];
+    const tinygltf::Material& g = model_.materials[index];
     std::string what = "material '" + (g.name.empty() ? std::to_string(index) : g.name) + "'";
     const auto& pbr = g.pbrMetallicRoughness;
     Material out;
@@ -888,7 +888,7 @@ class GltfConverter {
     if (g.normalTexture.index >= 0 || g.occlusionTexture.index >= 0)
       warnings_.add("normal and occlusion textures are ignored");
     for (const auto& [name, value] : g.extensions)  // those in extensionsUsed were reported already
-      if (!contains(kImplementedExtensions, name) && !contains(m_.extensionsUsed, std::string_view(name)))
+      if (!contains(kImplementedExtensions, name) && !contains(model_.extensionsUsed, std::string_view(name)))
         warnings_.add("material extension " + name + " ignored");
     const auto& pbr = g.pbrMetallicRoughness;
     out.base_color_texture = texture_slot(pbr.baseColorTexture, true, what + " baseColorTexture");
@@ -909,19 +909,19 @@ class GltfConverter {
 
   int texture_slot(const tinygltf::TextureInfo& info, bool srgb, const std::string& what) {
     if (info.index < 0) return -1;
-    if (size_t(info.index) >= m_.textures.size()) fail(what + " refers to missing texture " + std::to_string(info.index));
+    if (size_t(info.index) >= model_.textures.size()) fail(what + " refers to missing texture " + std::to_string(info.index));
     if (info.texCoord != 0) warnings_.add("texCoord sets other than 0 are not supported: TEXCOORD_0 used");
     if (const tinygltf::Value* tt = extension(info.extensions, "KHR_texture_transform"); tt && !identity_transform(*tt)) {
       if (texture_transform_required_) fail(what + " uses KHR_texture_transform, which is required but not implemented");
       warnings_.add("KHR_texture_transform ignored");
     }
-    const tinygltf::Texture& tex = m_.textures[info.index];
+    const tinygltf::Texture& tex = model_.textures[info.index];
     if (tex.source < 0) {
       warnings_.add("textures without a core image source (e.g. KTX2/WebP extensions) ignored");
       return -1;
     }
-    if (size_t(tex.source) >= m_.images.size()) fail(what + " refers to missing image " + std::to_string(tex.source));
-    if (tex.sampler >= int(m_.samplers.size())) fail(what + " refers to missing sampler " + std::to_string(tex.sampler));
+    if (size_t(tex.source) >= model_.images.size()) fail(what + " refers to missing image " + std::to_string(tex.source));
+    if (tex.sampler >= int(model_.samplers.size())) fail(what + " refers to missing sampler " + std::to_string(tex.sampler));
     TextureKey key{tex.source, srgb, std::max(tex.sampler, -1)};
     auto [it, fresh] = texture_slots_.try_emplace(key, int(texture_keys_.size()));
     if (fresh) texture_keys_.push_back(key);
@@ -929,7 +929,7 @@ class GltfConverter {
   }
 
   std::string image_label(int index) const {
-    const tinygltf::Image& img = m_.images[index];
+    const tinygltf::Image& img = model_.images[index];
     if (!img.uri.empty() && img.uri.rfind("data:", 0) != 0) return "'" + img.uri + "'";
     return quoted_name("image", index, img.name);
   }
@@ -937,9 +937,9 @@ class GltfConverter {
   // The encoded bytes of an image: from its file or data URI (kept by keep_encoded_image), or
   // from its bufferView, bounds-checked.
   std::pair<const unsigned char*, size_t> encoded_image(int index) const {
-    const tinygltf::Image& img = m_.images[index];
+    const tinygltf::Image& img = model_.images[index];
     if (img.bufferView >= 0) {
-      size_t len = size_t(img.bufferView) < m_.bufferViews.size() ? m_.bufferViews[img.bufferView].byteLength : 0;
+      size_t len = size_t(img.bufferView) < model_.bufferViews.size() ? model_.bufferViews[img.bufferView].byteLength : 0;
       return {checked_bytes(img.bufferView, 0, len, 1, 1, "image " + std::to_string(index)), len};
     }
     if (img.image.empty()) fail("image " + image_label(index) + " not found or empty");
@@ -993,13 +993,13 @@ class GltfConverter {
 
   void apply_sampler(int sampler, Texture& t) {
     if (sampler < 0) return;  // glTF: no sampler = repeat, auto filtering
-    const tinygltf::Sampler& s = m_.samplers[sampler];
+    const tinygltf::Sampler& s = model_.samplers[sampler];
     t.wrap_s = wrap_mode(s.wrapS, warnings_);
     t.wrap_t = wrap_mode(s.wrapT, warnings_);
     t.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
   }
 
-  const tinygltf::Model& m_;
+  const tinygltf::Model& model_;
   const std::string& file_;
   Scene& scene_;
   Warnings warnings_;

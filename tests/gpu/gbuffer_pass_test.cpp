@@ -39,7 +39,7 @@ void expect_gbuffer_equals_cpu(const Scene& scene, int width) {
          depth = relative_rmse(g.depth, cpu.frame.depth);
   std::printf("%s %dx%d, %d spp: relative RMSE GPU vs CPU: albedo %.2e, normal %.2e, depth %.2e; GPU %.2f ms (%s)\n",
               scene.source.c_str(), w, h, options.spp, albedo, normal, depth, g.gpu_ms, context.info().name.c_str());
-  // Float-order differences only (issue 5's bar: RMSE below 1e-3 of the image mean).
+  // Float-order differences only (the backends' bar: RMSE below 1e-3 of the image mean).
   EXPECT_LT(albedo, 1e-3);
   EXPECT_LT(normal, 1e-3);
   EXPECT_LT(depth, 1e-3);

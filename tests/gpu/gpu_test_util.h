@@ -31,7 +31,7 @@ inline double image_mean(const Image& img) {
 }
 
 // RMSE of the GPU image against the CPU's, as a fraction of the CPU image's mean magnitude
-// (absolute when the CPU image is black): issue 5's bar for "the same image" is 1e-3.
+// (absolute when the CPU image is black): the bar for "the same image" is 1e-3.
 inline double relative_rmse(const Image& gpu, const Image& cpu) {
   double s = 0.0, m = 0.0;
   for (size_t i = 0; i < cpu.data.size(); ++i) {

@@ -1,4 +1,4 @@
-// The Vulkan groundwork (issue 5): device enumeration, context creation, device selection errors,
+// The Vulkan groundwork: device enumeration, context creation, device selection errors,
 // and backend resolution. Device tests skip, with the reason, where no Vulkan device exists.
 #include <gtest/gtest.h>
 

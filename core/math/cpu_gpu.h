@@ -49,6 +49,12 @@ using glm::max;
 using glm::min;
 using glm::uintBitsToFloat;
 using std::sqrt;
+// GLSL's abs: +0 for -0, and no branch (glm's scalar abs is x >= 0 ? x : -x, a branch that random
+// signs mispredict).
+inline float abs(float x) { return std::fabs(x); }
+inline vec2 abs(vec2 v) { return vec2(std::fabs(v.x), std::fabs(v.y)); }
+inline vec3 abs(vec3 v) { return vec3(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)); }
+inline vec4 abs(vec4 v) { return vec4(std::fabs(v.x), std::fabs(v.y), std::fabs(v.z), std::fabs(v.w)); }
 inline bool isnan(float x) { return std::isnan(x); }
 inline bool isinf(float x) { return std::isinf(x); }
 // GLSL's bitfieldReverse for one 32-bit word (glm's generic version loops over bit widths).

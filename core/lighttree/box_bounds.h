@@ -8,24 +8,6 @@
 
 SST_BEGIN
 
-// lo > hi on some axis: an empty box (a padding leaf's box is lo = +inf, hi = -inf).
-SST_FUNC bool box_empty(vec3 lo, vec3 hi) { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
-
-SST_FUNC bool box_inside(vec3 lo, vec3 hi, vec3 x) {
-  return x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
-}
-
-SST_FUNC vec3 box_center(vec3 lo, vec3 hi) {
-  SST_PRECISE vec3 c = 0.5f * (lo + hi);
-  return c;
-}
-
-// Length of the box's diagonal (0 for an empty box).
-SST_FUNC float box_diagonal(vec3 lo, vec3 hi) {
-  SST_PRECISE vec3 e = hi - lo;
-  return box_empty(lo, hi) ? 0.0f : length3(e);
-}
-
 // Squared distance from x to the box (0 inside; +inf for an empty box).
 SST_FUNC float box_distance2_min(vec3 lo, vec3 hi, vec3 x) {
   if (box_empty(lo, hi)) return kInf;

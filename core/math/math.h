@@ -26,10 +26,10 @@ struct Bounds3 {
   vec3 hi{-kInf};
   void extend(vec3 p) { lo = glm::min(lo, p); hi = glm::max(hi, p); }
   void extend(const Bounds3& b) { lo = glm::min(lo, b.lo); hi = glm::max(hi, b.hi); }
-  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
-  vec3 center() const { return 0.5f * (lo + hi); }
+  bool empty() const { return box_empty(lo, hi); }
+  vec3 center() const { return box_center(lo, hi); }
   vec3 extent() const { return empty() ? vec3(0) : hi - lo; }
-  float diagonal() const { return glm::length(extent()); }
+  float diagonal() const { return box_diagonal(lo, hi); }
 };
 
 }  // namespace sst

@@ -1,7 +1,7 @@
-// Constants and vector helpers of every shared kernel (core/math/cpu_gpu.h), and the orthonormal
-// basis around a normal. dot3 / cross3 / length3 / normalize3 compute in glm's operation order
-// and `precise`, so that a kernel calling them gives the same bits on both backends; GLSL's
-// built-ins would evaluate in the driver's order.
+// Constants and vector helpers of every shared kernel (core/math/cpu_gpu.h), the orthonormal basis
+// around a normal, and axis-aligned boxes. dot3 / cross3 / length3 / normalize3 compute in glm's
+// operation order and `precise`, so that a kernel calling them gives the same bits on both
+// backends; GLSL's built-ins would evaluate in the driver's order.
 #ifndef SST_CORE_MATH_VECTOR_MATH_H
 #define SST_CORE_MATH_VECTOR_MATH_H
 #include "core/math/cpu_gpu.h"
@@ -96,6 +96,27 @@ SST_FUNC vec3 to_local(SST_IN(Basis) f, vec3 v) { return vec3(dot3(v, f.t), dot3
 SST_FUNC vec3 to_world(SST_IN(Basis) f, vec3 v) {
   SST_PRECISE vec3 r = v.x * f.t + v.y * f.b + v.z * f.n;
   return r;
+}
+
+// An axis-aligned box [lo, hi] as two corners, the form both backends store boxes in. The C++
+// Bounds3 (math.h) answers with these functions, so the CPU and the GPU measure a box alike.
+
+// lo > hi on some axis: an empty box (a padding leaf's box is lo = +inf, hi = -inf).
+SST_FUNC bool box_empty(vec3 lo, vec3 hi) { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+
+SST_FUNC bool box_inside(vec3 lo, vec3 hi, vec3 x) {
+  return x.x >= lo.x && x.x <= hi.x && x.y >= lo.y && x.y <= hi.y && x.z >= lo.z && x.z <= hi.z;
+}
+
+SST_FUNC vec3 box_center(vec3 lo, vec3 hi) {
+  SST_PRECISE vec3 c = 0.5f * (lo + hi);
+  return c;
+}
+
+// Length of the box's diagonal (0 for an empty box).
+SST_FUNC float box_diagonal(vec3 lo, vec3 hi) {
+  SST_PRECISE vec3 e = hi - lo;
+  return box_empty(lo, hi) ? 0.0f : length3(e);
 }
 
 SST_END

@@ -1,33 +1,22 @@
-// The lights on the GPU: a LightSampler's tables (core/lights/light_sampler.h) packed into the
-// std430 arrays of core/lights/light_layout.h (pack_lights: plain C++, no device needed) and
-// uploaded into storage buffers (GpuLights), which gpu/shaders/light_sampler.glsl reads to sample
-// exactly what LightSampler samples. The twin of gpu/scene_upload.h for the lights.
+// The lights on the GPU: a LightSampler's tables (PackedLights, core/lights/light_sampler.h, in
+// the layout of core/lights/light_layout.h) uploaded as they are into storage buffers
+// (GpuLights), which gpu/shaders/light_sampler.glsl binds to the shared sampling
+// (core/lights/light_sample.h).
 #pragma once
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "core/lights/light_layout.h"
 #include "core/lights/light_sampler.h"
 #include "core/scene/scene.h"
-#include "core/lights/light_layout.h"
 
 namespace sst::gpu {
 
-// The light tables in GPU layout, index for index with the LightSampler they came from.
-struct PackedLights {
-  glsl::LightHeader header{};
-  std::vector<glsl::LightPunctual> punctual;       // Scene::lights
-  std::vector<glsl::LightCdfEntry> distribution;   // LightSampler's distribution (empty if it is)
-  std::vector<glsl::LightEmissive> emissive;       // LightSampler's emissive triangles
-  std::vector<uint32_t> light_of_triangle;         // per scene triangle; LIGHT_NONE if no light
-
-  size_t bytes() const;
-};
-
-// Packs `lights`, which must have been built from `scene`. Throws sst::Error when the counts
-// disagree (a sampler of another scene).
-PackedLights pack_lights(const Scene& scene, const LightSampler& lights);
+// The tables of `lights`, after checking that they were built from `scene`: throws sst::Error
+// when the counts disagree (a sampler of another scene).
+const PackedLights& pack_lights(const Scene& scene, const LightSampler& lights);
 
 }  // namespace sst::gpu
 

@@ -11,24 +11,11 @@
 #include <iterator>
 #include <limits>
 
+#include "core/scene/scene_access.h"
 #include "core/util/error.h"
 
 namespace sst::gpu {
 namespace {
-
-uint32_t wrap_code(Wrap w) {
-  switch (w) {
-    case Wrap::ClampToEdge: return SCENE_WRAP_CLAMP_TO_EDGE;
-    case Wrap::MirroredRepeat: return SCENE_WRAP_MIRRORED_REPEAT;
-    case Wrap::Repeat:
-    default: return SCENE_WRAP_REPEAT;
-  }
-}
-
-// The CPU samples an index outside the table as 1 (texture_or_one); -1 does the same on the GPU.
-int texture_index(int index, size_t texture_count) {
-  return index >= 0 && size_t(index) < texture_count ? index : -1;
-}
 
 std::string megabytes(size_t bytes) {
   char text[32];
@@ -62,7 +49,7 @@ PackedScene pack_scene(const Scene& scene) {
     glsl::SceneVertex& v = out.vertices[i];
     v.position = scene.positions[i];
     v.normal = scene.normals[i];
-    const vec2 uv = scene.uvs.empty() ? vec2(0.0f) : scene.uvs[i];
+    const vec2 uv = scene_uv(scene, uint32_t(i));
     v.u = uv.x;
     v.v = uv.y;
   }
@@ -76,23 +63,12 @@ PackedScene pack_scene(const Scene& scene) {
     if (m >= scene.materials.size())
       throw Error(where + "triangle " + std::to_string(i) + " names material " + std::to_string(m) + " of " +
                   std::to_string(scene.materials.size()));
-    out.triangles[i] = {t.x, t.y, t.z, m};
+    out.triangles[i] = scene_triangle(scene, uint32_t(i));
   }
 
   const size_t texture_count = scene.textures.size();
   out.materials.resize(scene.materials.size());
-  for (size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    glsl::SceneMaterial& g = out.materials[i];
-    g.base_color = m.base_color;
-    g.metallic = m.metallic;
-    g.emission = m.emission;
-    g.roughness = m.roughness;
-    g.base_color_texture = texture_index(m.base_color_texture, texture_count);
-    g.metallic_roughness_texture = texture_index(m.metallic_roughness_texture, texture_count);
-    g.emissive_texture = texture_index(m.emissive_texture, texture_count);
-    g.double_sided = m.double_sided ? 1u : 0u;
-  }
+  for (size_t i = 0; i < scene.materials.size(); ++i) out.materials[i] = scene_material(scene, uint32_t(i));
 
   // Texel storage first, so that the texel array is allocated once.
   size_t words = SCENE_TEXELS_FIRST_TEXEL;
@@ -109,28 +85,19 @@ PackedScene pack_scene(const Scene& scene) {
   if (words > std::numeric_limits<uint32_t>::max())
     throw Error(where + "textures of " + megabytes(4 * words) + " exceed 32-bit texel offsets");
   out.texels.reserve(words);
-  out.texels.insert(out.texels.end(), std::begin(glsl::scene_srgb_decode_bits), std::end(glsl::scene_srgb_decode_bits));
-  out.texels.insert(out.texels.end(), std::begin(glsl::scene_unorm8_bits), std::end(glsl::scene_unorm8_bits));
-  static_assert(SCENE_TEXELS_SRGB_TABLE == 0 && SCENE_TEXELS_UNORM8_TABLE == 256 && SCENE_TEXELS_FIRST_TEXEL == 512);
+  out.texels.insert(out.texels.end(), std::begin(glsl::scene_texel_tables), std::end(glsl::scene_texel_tables));
   out.textures.resize(texture_count);
   for (size_t i = 0; i < texture_count; ++i) {
     const Texture& t = scene.textures[i];
     const size_t count = t.width > 0 && t.height > 0 ? t.texel_count() : 0;
     glsl::SceneTexture& g = out.textures[i];
+    g = texture_layout(t);
     g.texel_offset = uint32_t(out.texels.size());
-    g.width = std::max(t.width, 0);
-    g.height = std::max(t.height, 0);
-    g.wrap_s = wrap_code(t.wrap_s);
-    g.wrap_t = wrap_code(t.wrap_t);
-    g.nearest = t.nearest ? 1u : 0u;
-    g.reserved = 0u;
-    if (!t.texels.empty()) {
-      g.format = SCENE_TEXTURE_RGBA32F;
+    if (g.format == SCENE_TEXTURE_RGBA32F) {
       const size_t first = out.texels.size();
       out.texels.resize(first + 4 * count);
       std::memcpy(out.texels.data() + first, t.texels.data(), 4 * count * sizeof(float));
     } else {
-      g.format = t.srgb ? SCENE_TEXTURE_RGBA8_SRGB : SCENE_TEXTURE_RGBA8;
       out.texels.insert(out.texels.end(), t.rgba8.begin(), t.rgba8.begin() + std::ptrdiff_t(count));
     }
   }

@@ -1,6 +1,7 @@
 // The scene on the GPU: a sst::Scene packed into the std430 arrays of core/scene/scene_layout.h
-// (pack_scene: plain C++, no device needed) and uploaded into storage buffers (GpuScene), which
-// gpu/shaders/surface.glsl reads to compute exactly what core/shading/surface.cpp computes.
+// (pack_scene: plain C++, no device needed, with the conversions the CPU's hooks use,
+// core/scene/scene_access.h) and uploaded into storage buffers (GpuScene), to which
+// gpu/shaders/surface.glsl binds the shared kernels' hooks.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -29,8 +30,8 @@ struct PackedScene {
   size_t bytes() const;
 };
 
-// Packs `scene`. Texture indices beyond the texture table become -1 (the CPU samples them as 1,
-// as it does absent textures). Throws sst::Error (one line naming the triangle, material or
+// Packs `scene`. Texture indices beyond the texture table become -1 (sampled as 1, as absent
+// textures are). Throws sst::Error (one line naming the triangle, material or
 // texture) on what the CPU would read out of bounds: a vertex or material index out of range,
 // normals or uvs whose count is not the vertex count, a texture whose texel data is smaller than
 // width x height, more texels than 32-bit offsets address.

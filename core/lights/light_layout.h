@@ -1,8 +1,9 @@
-// The lights as they cross the host/GPU boundary (Vulkan backend), defined once for C++ and GLSL:
-// the twin of core/lights/light_sampler.h's tables (LightSampler and its DiscreteDistribution).
-// Packed by gpu/light_upload.h (pack_lights), read by gpu/shaders/light_sampler.glsl, which
-// samples exactly what LightSampler samples. In C++ the structures live in namespace sst::glsl
-// with static_asserts on size and offsets; in GLSL the same text declares plain std430 structs.
+// The tables of light sampling (core/lights/light_sample.h) as both backends read them, defined
+// once for C++ and GLSL. LightSampler builds them (PackedLights, core/lights/light_sampler.h) from
+// its DiscreteDistribution and reads them on the CPU; gpu/light_upload.h uploads them as they are
+// and gpu/shaders/light_sampler.glsl binds the sampling's hooks to the buffers. In C++ the
+// structures live in namespace sst::glsl (also named in sst) with static_asserts on size and
+// offsets; in GLSL the same text declares plain std430 structs.
 //
 // Five std430 storage buffers, declared in GLSL by LIGHT_BUFFERS(first) under these names:
 //   LightHeader       light_header            counts and the scene bounds (one struct)
@@ -15,10 +16,10 @@
 //                                             LIGHT_NONE for a triangle that does not emit
 // An empty array is bound as a small dummy buffer; nothing indexes it.
 //
-// The distribution's CDF is double on the CPU. Each cdf value travels as a pair of floats
-// (hi = the nearest float, lo = the float nearest to the rest), so that the GPU decides
-// `cdf > u` for a float u exactly as the CPU does (hi > u, or hi == u and lo > 0): the same light
-// is picked for the same u, bit for bit.
+// The distribution's CDF is summed in double. Each cdf value is kept as a pair of floats
+// (hi = the nearest float, lo = the float nearest to the rest), so that `cdf > u` for a float u is
+// decided exactly as with the double (hi > u, or hi == u and lo > 0): the same light is picked
+// for the same u as a double CDF picks, on both backends.
 #ifndef SST_CORE_LIGHTS_LIGHT_LAYOUT_H
 #define SST_CORE_LIGHTS_LIGHT_LAYOUT_H
 
@@ -35,14 +36,14 @@ using glm::vec3;
 #define LIGHT_POINT 0u
 #define LIGHT_SPOT 1u
 #define LIGHT_DIRECTIONAL 2u
-// light_of_triangle[] of a triangle that is not a light (LightSampler's UINT32_MAX).
+// light_of_triangle[] of a triangle that is not a light.
 #define LIGHT_NONE 0xFFFFFFFFu
 // The number of buffers LIGHT_BUFFERS declares (sst::gpu::GpuLights::buffers()).
 #define LIGHT_BUFFER_COUNT 5u
 
 struct LightHeader {
   uint punctual_count;      // Scene::lights.size()
-  uint emissive_count;      // LightSampler::emissive_triangle_count()
+  uint emissive_count;      // the number of emissive triangles
   uint distribution_size;   // punctual_count + emissive_count; 0 when the distribution is empty
   uint triangle_count;      // entries of light_of_triangle[] (Scene::triangles.size())
   vec3 bounds_center;       // Scene::bounds.center(), for directional emission
@@ -83,6 +84,13 @@ static_assert(offsetof(LightPunctual, cos_outer) == 44);
 static_assert(sizeof(LightCdfEntry) == 16 && offsetof(LightCdfEntry, pmf) == 8);
 static_assert(sizeof(LightEmissive) == 8 && offsetof(LightEmissive, area) == 4);
 }  // namespace sst::glsl
+
+namespace sst {
+using glsl::LightCdfEntry;
+using glsl::LightEmissive;
+using glsl::LightHeader;
+using glsl::LightPunctual;
+}  // namespace sst
 #else
 // Declares the five light buffers, read-only, at bindings first .. first + 4 in the order of the
 // list at the top: the order of sst::gpu::GpuLights::buffers().

@@ -1,9 +1,11 @@
-// The scene as it crosses the host/GPU boundary (Vulkan backend), defined once for C++ and GLSL.
-// In C++ the structures live in namespace sst::glsl and are built from glm types, with
-// static_asserts on size and offsets; in GLSL the same text declares plain structs for std430
-// buffers (include with GL_GOOGLE_include_directive). Packed from a sst::Scene by
-// gpu/scene_upload.h (pack_scene), read by gpu/shaders/surface.glsl, which computes on the GPU
-// exactly what core/shading/surface.cpp computes on the CPU.
+// The scene as the shared kernels read it (core/shading/surface_eval.h,
+// core/scene/texture_sample.h) and as it crosses the host/GPU boundary (Vulkan backend), defined
+// once for C++ and GLSL. In C++ the structures live in namespace sst::glsl (also named in sst) and
+// are built from glm types, with static_asserts on size and offsets; in GLSL the same text
+// declares plain structs for std430 buffers (include with GL_GOOGLE_include_directive). On the CPU
+// the kernels' hooks convert a sst::Scene's arrays element by element (core/scene/scene_access.h);
+// for the GPU gpu/scene_upload.h packs them (pack_scene) and gpu/shaders/surface.glsl binds the
+// hooks to the buffers.
 //
 // Five std430 storage buffers (no vec3 arrays: every vec3 is followed by a 4-byte scalar, which
 // std430 packs into the vec3's 16-byte slot, exactly like the C++ layout). A shader declares them
@@ -62,8 +64,7 @@ struct SceneTriangle {
 };
 
 // One glTF metallic-roughness material (sst::Material). Texture indices are -1 when absent;
-// pack_scene also turns indices beyond the texture table into -1, which is what the CPU does with
-// them (texture_or_one), so a shader only tests >= 0.
+// Indices beyond the texture table are -1 too (scene_texture_index), so the kernels only test >= 0.
 struct SceneMaterial {
   vec3 base_color;                 // linear RGB factor, multiplied by the base-colour texture
   float metallic;                  // factor, multiplied by the metallic-roughness texture's B
@@ -89,8 +90,8 @@ struct SceneTexture {
   uint reserved;      // 0
 };
 
-// The 8-bit decoding tables of core/scene/texture.cpp as float bits, so that the GPU decodes
-// texels to the same floats as the CPU (no pow, no division on the GPU):
+// The 8-bit decoding tables of core/scene/texture_sample.h as float bits, so that both backends
+// decode texels to the same floats (no pow, no division):
 //   SCENE_SRGB_DECODE_BITS[i] = bits of srgb_decode(float(i) / 255.0f) (core/image/image.h)
 //   SCENE_UNORM8_BITS[i]      = bits of float(i) / 255.0f (the alpha of 8-bit texels)
 // tests/gpu/scene_upload_test.cpp checks both against the C++ functions. They travel at the start
@@ -173,6 +174,9 @@ struct SceneTexture {
 #ifdef __cplusplus
 inline constexpr uint32_t scene_srgb_decode_bits[256] = {SCENE_SRGB_DECODE_BITS};
 inline constexpr uint32_t scene_unorm8_bits[256] = {SCENE_UNORM8_BITS};
+// Both tables as they start scene_texels[]: what TEXTURE_TABLE_WORD reads on the CPU.
+inline constexpr uint32_t scene_texel_tables[SCENE_TEXELS_FIRST_TEXEL] = {SCENE_SRGB_DECODE_BITS, SCENE_UNORM8_BITS};
+static_assert(SCENE_TEXELS_SRGB_TABLE == 0 && SCENE_TEXELS_UNORM8_TABLE == 256 && SCENE_TEXELS_FIRST_TEXEL == 512);
 
 static_assert(sizeof(SceneVertex) == 32);
 static_assert(offsetof(SceneVertex, position) == 0);
@@ -203,6 +207,13 @@ static_assert(offsetof(SceneTexture, wrap_t) == 20);
 static_assert(offsetof(SceneTexture, nearest) == 24);
 static_assert(offsetof(SceneTexture, reserved) == 28);
 }  // namespace sst::glsl
+
+namespace sst {
+using glsl::SceneMaterial;
+using glsl::SceneTexture;
+using glsl::SceneTriangle;
+using glsl::SceneVertex;
+}  // namespace sst
 #else
 // Declares the five scene buffers, read-only, at bindings first .. first + 4 in the order of the
 // list at the top (vertices, triangles, materials, textures, texels): the order of

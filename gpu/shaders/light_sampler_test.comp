@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Runs gpu/shaders/light_sampler.glsl for a list of queries so that a test can compare it with
-// core/lights/light_sampler.cpp (tests/gpu/light_sampler_gpu_test.cpp).
+// Runs the light sampling (core/lights/light_sample.h through gpu/shaders/light_sampler.glsl) for a
+// list of queries so that a test can compare it with the same source compiled as C++ and with the
+// double-precision pick (tests/gpu/light_sampler_gpu_test.cpp).
 // Bindings 0..4: the scene (GpuScene::buffers()); 5..9: the lights (GpuLights::buffers());
 // 10: queries; 11: results. Push constant: the number of queries.
 // Query i: 20 words, floats as their bits:

@@ -1,7 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Evaluates make_surface (gpu/shaders/surface.glsl) for a list of hits so that a test can compare
-// it with core/shading/surface.cpp (tests/gpu/scene_upload_test.cpp).
+// Evaluates make_surface (core/shading/surface_eval.h through gpu/shaders/surface.glsl) for a list
+// of hits so that a test can compare it with the same source compiled as C++
+// (tests/gpu/scene_upload_test.cpp).
 // Bindings 0..4: the scene (sst::gpu::GpuScene::buffers()); 5: queries; 6: results.
 // Query i: 8 words {triangle, bits(b1), bits(b2), 0, bits(incoming.xyz), 0}.
 // Result i: 24 words {p.xyz, front_face, ng.xyz, material, ns.xyz, triangle, uv.xy, metallic,

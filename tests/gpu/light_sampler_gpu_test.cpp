@@ -1,6 +1,8 @@
-// The light sampler on the GPU (gpu/shaders/light_sampler.glsl via light_sampler_test.comp)
-// against core/lights/light_sampler.cpp on the same points and random numbers: the same light is
-// picked and the same remapped number drawn, bit for bit; punctual and area-sampled lights give
+// The light sampler on the GPU (core/lights/light_sample.h compiled as GLSL, through
+// gpu/shaders/light_sampler.glsl and light_sampler_test.comp) against LightSampler on the CPU (the
+// same source compiled as C++) on the same points and random numbers: the same light is picked
+// and the same remapped number drawn as by the double-precision DiscreteDistribution, bit for
+// bit; punctual and area-sampled lights give
 // the CPU's floats to a few ulps (measured on lavapipe: 0); solid-angle samples, which go through
 // asin/atan2/sin/cos (core/math/accurate_math.h, within an ulp of glibc's), their pdf and
 // radiance to 1e-4 relative (measured: 1e-5) and their point no further from the exact one than
@@ -213,7 +215,8 @@ vec3 triangle_point(const Scene& scene, uint32_t tri, vec2 b) {
 // exactly on the distribution's cdf steps and one float either side.
 std::vector<Query> make_queries(const Scene& scene, const LightSampler& lights, size_t count, uint32_t seed) {
   std::mt19937 rng(seed);
-  const std::vector<uint32_t>& emissive = lights.emissive_triangles();
+  std::vector<uint32_t> emissive;
+  for (const glsl::LightEmissive& e : lights.packed().emissive) emissive.push_back(e.triangle);
   const std::vector<double>& cdf = lights.distribution().cdf();
   const vec3 lo = scene.bounds.lo, extent = scene.bounds.extent();
   std::vector<Query> queries(count);
@@ -336,7 +339,7 @@ Agreement compare(const Scene& scene, const LightSampler& lights, size_t count, 
     uint32_t index = dist.empty() ? 0u : dist.sample(q.u.x);
     bool spherical = false;
     if (!dist.empty() && index >= punctual) {
-      const uvec3& t = scene.triangles[lights.emissive_triangles()[index - punctual]];
+      const uvec3& t = scene.triangles[lights.packed().emissive[index - punctual].triangle];
       spherical = uses_solid_angle_sampling(q.p, scene.positions[t.x], scene.positions[t.y], scene.positions[t.z]);
     }
     if (ok != g.ok) {
@@ -357,7 +360,7 @@ Agreement compare(const Scene& scene, const LightSampler& lights, size_t count, 
           a.point_rel = std::max(a.point_rel, point);
           float u1 = 0.0f;
           dist.sample(q.u.x, &u1);
-          const uvec3& t = scene.triangles[lights.emissive_triangles()[index - punctual]];
+          const uvec3& t = scene.triangles[lights.packed().emissive[index - punctual].triangle];
           const vec3 exact = spherical_point_in_double(q.p, scene.positions[t.x], scene.positions[t.y],
                                                        scene.positions[t.z], vec2(u1, q.u.y));
           a.point_excess = std::max(a.point_excess, rel3(g.s.point, exact) - 4.0 * rel3(s.point, exact));

@@ -1,6 +1,6 @@
 // The scene on the GPU (gpu/scene_upload.h, core/scene/scene_layout.h, gpu/shaders/surface.glsl):
-// pack_scene's invariants without a device, then make_surface evaluated by the shader against
-// core/shading/surface.cpp on hits found by Embree. The GPU parts skip where there is no device;
+// pack_scene's invariants without a device, then make_surface (core/shading/surface_eval.h)
+// compiled as GLSL against the same source compiled as C++ on hits found by Embree. The GPU parts skip where there is no device;
 // everything is compiled only when the Vulkan backend is (SST_HAVE_VULKAN: gpu/*.cpp exist only
 // then).
 #include <gtest/gtest.h>

@@ -1,0 +1,138 @@
+// A ray's hit turned into what shading needs (position, normals facing the viewer, material values
+// with textures applied, the radiance emitted toward the viewer), and the triangle quantities
+// light sampling needs (geometric normal, area, emission), in the common subset of C++ and GLSL
+// (core/math/cpu_gpu.h): core/shading/surface.h on the CPU, the shaders on the GPU.
+//
+// The scene is read through hooks the includer defines before including this file (the types
+// are core/scene/scene_layout.h's):
+//   SCENE_CTX_PARAM              a leading parameter with its trailing comma through which the
+//                                hooks reach the scene (C++: `const ::sst::Scene& scene,`), empty
+//                                in GLSL
+//   SCENE_CTX                    the same as an argument
+//   SCENE_TRIANGLE(t)            SceneTriangle: triangle t's vertex indices and material
+//   SCENE_POSITION(i)            vec3: vertex i's position
+//   SCENE_NORMAL(i)              vec3: vertex i's shading normal (unit, or zero)
+//   SCENE_UV(i)                  vec2: vertex i's uv (zero when the scene has none)
+//   SCENE_MATERIAL(m)            SceneMaterial: material m, its texture indices >= 0 only for
+//                                textures that exist
+//   SCENE_TEXTURE_SAMPLE(k, uv)  vec4: texture k (>= 0) at uv (core/scene/texture_sample.h)
+//
+// Every expression keeps glm's operation order (dot, cross, mix written out in
+// core/math/vector_math.h) and its bits are fixed by SST_PRECISE, so that both backends compute
+// the same floats up to the GPU's sqrt and division.
+#ifndef SST_CORE_SHADING_SURFACE_EVAL_H
+#define SST_CORE_SHADING_SURFACE_EVAL_H
+#include "core/math/vector_math.h"
+#include "core/scene/scene_layout.h"
+
+#if !defined(SCENE_CTX_PARAM) || !defined(SCENE_CTX) || !defined(SCENE_TRIANGLE) || !defined(SCENE_POSITION) || \
+    !defined(SCENE_NORMAL) || !defined(SCENE_UV) || !defined(SCENE_MATERIAL) || !defined(SCENE_TEXTURE_SAMPLE)
+#error "define the SCENE_* hooks before including core/shading/surface_eval.h"
+#endif
+
+SST_BEGIN
+
+// `incoming` of make_surface is the direction of the ray that hit the surface.
+struct Surface {
+  vec3 p SST_DEFAULT(vec3(0.0f));
+  vec3 ng SST_DEFAULT(vec3(0.0f));  // geometric normal, flipped to the side the ray came from
+  vec3 ns SST_DEFAULT(vec3(0.0f));  // interpolated shading normal, on the same side as ng
+  vec2 uv SST_DEFAULT(vec2(0.0f));
+  uint triangle SST_DEFAULT(0u);
+  uint material SST_DEFAULT(0u);
+  bool front_face SST_DEFAULT(true);  // the ray hit the side the triangle's winding faces
+  vec3 base_color SST_DEFAULT(vec3(1.0f));
+  float metallic SST_DEFAULT(0.0f);
+  float roughness SST_DEFAULT(1.0f);
+  vec3 emission SST_DEFAULT(vec3(0.0f));  // radiance leaving toward the viewer (0 from the back of one-sided)
+};
+
+// (1 - b.x - b.y) * a + b.x * b1 + b.y * b2: a point of the triangle (a, b1, b2) at barycentrics b.
+SST_FUNC vec3 barycentric_mix3(vec3 a, vec3 b1, vec3 b2, vec2 b) {
+  SST_PRECISE float b0 = 1.0f - b.x - b.y;
+  SST_PRECISE vec3 r = b0 * a + b.x * b1 + b.y * b2;
+  return r;
+}
+
+SST_FUNC vec2 barycentric_mix2(vec2 a, vec2 b1, vec2 b2, vec2 b) {
+  SST_PRECISE float b0 = 1.0f - b.x - b.y;
+  SST_PRECISE vec2 r = b0 * a + b.x * b1 + b.y * b2;
+  return r;
+}
+
+SST_FUNC vec2 triangle_uv(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, vec2 b) {
+  return barycentric_mix2(SCENE_UV(t.v0), SCENE_UV(t.v1), SCENE_UV(t.v2), b);
+}
+
+SST_FUNC vec4 texture_or_one(SCENE_CTX_PARAM int texture, vec2 uv) {
+  return texture >= 0 ? SCENE_TEXTURE_SAMPLE(texture, uv) : vec4(1.0f);
+}
+
+// Unit, by winding; +z for a degenerate triangle.
+SST_FUNC vec3 triangle_geometric_normal(SCENE_CTX_PARAM uint tri) {
+  SceneTriangle t = SCENE_TRIANGLE(tri);
+  vec3 p0 = SCENE_POSITION(t.v0);
+  SST_PRECISE vec3 e1 = SCENE_POSITION(t.v1) - p0;
+  SST_PRECISE vec3 e2 = SCENE_POSITION(t.v2) - p0;
+  vec3 n = cross3(e1, e2);
+  float len = length3(n);
+  return len > 0.0f ? n / len : vec3(0.0f, 0.0f, 1.0f);
+}
+
+SST_FUNC float triangle_area(SCENE_CTX_PARAM uint tri) {
+  SceneTriangle t = SCENE_TRIANGLE(tri);
+  vec3 p0 = SCENE_POSITION(t.v0);
+  SST_PRECISE vec3 e1 = SCENE_POSITION(t.v1) - p0;
+  SST_PRECISE vec3 e2 = SCENE_POSITION(t.v2) - p0;
+  SST_PRECISE float a = 0.5f * length3(cross3(e1, e2));
+  return a;
+}
+
+// Emitted radiance of triangle `tri` at barycentrics (b1, b2), seen from the side `front_face`.
+SST_FUNC vec3 triangle_emission(SCENE_CTX_PARAM uint tri, vec2 barycentric, bool front_face) {
+  SceneTriangle t = SCENE_TRIANGLE(tri);
+  SceneMaterial m = SCENE_MATERIAL(t.material);
+  if (!front_face && m.double_sided == 0u) return vec3(0.0f);
+  if (m.emissive_texture < 0) return m.emission;
+  vec4 texel = texture_or_one(SCENE_CTX m.emissive_texture, triangle_uv(SCENE_CTX t, barycentric));
+  SST_PRECISE vec3 e = m.emission * vec3(texel.x, texel.y, texel.z);
+  return e;
+}
+
+// The surface that a ray with direction `incoming` hits on triangle `tri` at Embree's
+// barycentrics b.
+SST_FUNC Surface make_surface(SCENE_CTX_PARAM uint tri, vec2 b, vec3 incoming) {
+  Surface s;
+  SceneTriangle t = SCENE_TRIANGLE(tri);
+  // Recompute the point from the triangle rather than origin + t*dir: it is exact on the surface.
+  s.p = barycentric_mix3(SCENE_POSITION(t.v0), SCENE_POSITION(t.v1), SCENE_POSITION(t.v2), b);
+  s.triangle = tri;
+  s.material = t.material;
+  s.ng = triangle_geometric_normal(SCENE_CTX tri);
+  s.front_face = dot3(s.ng, incoming) < 0.0f;
+  if (!s.front_face) s.ng = -s.ng;
+  vec3 ns = barycentric_mix3(SCENE_NORMAL(t.v0), SCENE_NORMAL(t.v1), SCENE_NORMAL(t.v2), b);
+  float len = length3(ns);
+  ns = len > 0.0f && is_finite(len) ? ns / len : s.ng;
+  // Shading normals are interpolated per vertex and may point away from the viewer's side;
+  // keep them in the hemisphere of the geometric normal so shading never sees a back face.
+  if (dot3(ns, s.ng) < 0.0f) ns = -ns;
+  s.ns = ns;
+  s.uv = triangle_uv(SCENE_CTX t, b);
+
+  SceneMaterial m = SCENE_MATERIAL(s.material);
+  vec4 base_texel = texture_or_one(SCENE_CTX m.base_color_texture, s.uv);
+  SST_PRECISE vec3 base = m.base_color * vec3(base_texel.x, base_texel.y, base_texel.z);
+  s.base_color = base;
+  vec4 mr = texture_or_one(SCENE_CTX m.metallic_roughness_texture, s.uv);
+  SST_PRECISE float metallic = m.metallic * mr.z;
+  SST_PRECISE float roughness = m.roughness * mr.y;
+  s.metallic = metallic;
+  s.roughness = roughness;
+  s.emission = triangle_emission(SCENE_CTX tri, b, s.front_face);
+  return s;
+}
+
+SST_END
+
+#endif  // SST_CORE_SHADING_SURFACE_EVAL_H

@@ -109,6 +109,10 @@ static_assert(offsetof(BvhHit, triangle) == 4);
 static_assert(offsetof(BvhHit, u) == 8);
 static_assert(offsetof(BvhHit, v) == 12);
 }  // namespace sst::glsl
+
+namespace sst {
+using glsl::BvhHit;
+}  // namespace sst
 #endif
 
 #endif  // SST_CORE_ACCEL_BVH_LAYOUT_H

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "core/accel/bvh_layout.h"
 #include "core/accel/ray_offset.h"
 #include "core/math/math.h"
 #include "core/scene/scene.h"
@@ -50,6 +51,8 @@ class EmbreeAccel {
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
 
+  // The scene-relative part of every ray offset (scene_ray_epsilon).
+  float scene_epsilon() const { return epsilon_; }
   // Offset along the geometric normal for spawning rays from a surface point p (ray_offset.h).
   float ray_epsilon(vec3 p) const { return ray_offset_distance(epsilon_, p); }
   vec3 offset_point(vec3 p, vec3 ng_toward) const { return offset_ray_origin(epsilon_, p, ng_toward); }
@@ -71,4 +74,34 @@ class EmbreeAccel {
   std::unique_ptr<FlatBvh> flat_;  // set: queries go to the flat BVH instead of Embree
 };
 
+// The RAY_* hooks of the shared path kernels (core/pt/trace_path.h): the closest hit along
+// origin + t dir, t in [0, inf), in the GPU traversal's form (triangle BVH_INVALID_TRIANGLE for a
+// miss), and whether anything lies on origin + t dir, t in [0, tmax).
+inline BvhHit accel_intersect(const EmbreeAccel& accel, vec3 origin, vec3 dir) {
+  Ray ray;
+  ray.origin = origin;
+  ray.direction = dir;
+  Hit h = accel.intersect(ray);
+  BvhHit out;
+  out.t = h.t;
+  out.triangle = h.valid() ? h.triangle : BVH_INVALID_TRIANGLE;
+  out.u = h.barycentric.x;
+  out.v = h.barycentric.y;
+  return out;
+}
+
+inline bool accel_occluded(const EmbreeAccel& accel, vec3 origin, vec3 dir, float tmax) {
+  Ray ray;
+  ray.origin = origin;
+  ray.direction = dir;
+  ray.tmax = tmax;
+  return accel.occluded(ray);
+}
+
 }  // namespace sst
+
+#define RAY_CTX_PARAM const ::sst::EmbreeAccel &accel,
+#define RAY_CTX accel,
+#define RAY_INTERSECT(origin, dir) ::sst::accel_intersect(accel, origin, dir)
+#define RAY_OCCLUDED(origin, dir, tmax) ::sst::accel_occluded(accel, origin, dir, tmax)
+#define RAY_EPSILON accel.scene_epsilon()

@@ -1,94 +1,20 @@
 #include "core/pt/path_tracer.h"
 
 #include "core/render/pixel_loop.h"
-#include "core/shading/surface.h"
-#include "core/sampling/sampling.h"
 
 namespace sst {
-namespace {
-
-// Next-event estimation at surface s: one light sample, one shadow ray, MIS-weighted.
-vec3 sample_direct(const RenderContext& ctx, const Surface& s, const Brdf& brdf, const Basis& basis, vec3 wo,
-                   vec2 u, RayCounters& counters) {
-  LightSample ls;
-  if (!ctx.lights.sample(s.p, u, ls)) return vec3(0.0f);
-  // Light from behind the geometric surface would leak through it: nothing is transmitted.
-  if (glm::dot(ls.wi, s.ng) <= 0.0f) return vec3(0.0f);
-  vec3 wi = to_local(basis, ls.wi);
-  vec3 f = brdf_eval(brdf, wo, wi);
-  if (wi.z <= 0.0f || max_component(f) <= 0.0f || max_component(ls.li) <= 0.0f) return vec3(0.0f);
-  Ray shadow;
-  if (std::isinf(ls.distance)) {
-    shadow.origin = ctx.accel.offset_point(s.p, s.ng);
-    shadow.direction = ls.wi;
-  } else {
-    shadow = ctx.accel.shadow_ray(s.p, s.ng, ls.point, ls.normal);
-  }
-  ++counters.shadow_rays;
-  if (ctx.accel.occluded(shadow)) return vec3(0.0f);
-  float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, brdf_pdf(brdf, wo, wi));
-  return f * wi.z * ls.li * (weight / ls.pdf);
-}
-
-}  // namespace
 
 PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
                       RayCounters& counters, Surface* first_hit) {
-  PathSample out;
-  ++counters.primary_rays;
-  Hit hit = ctx.accel.intersect(ray);
-  if (!hit.valid()) return out;
-  Surface s = make_surface(ctx.scene, hit, ray.direction);
-  if (first_hit) *first_hit = s;
-  out.albedo = s.base_color;
-  out.normal = s.ns;
-  out.depth = hit.t * glm::length(ray.direction);
-  out.direct = s.emission;
-
-  vec3 beta(1.0f);
-  // Vertex k = 1 is the first hit. Light arriving at vertex k has made k-1 indirect bounces, so
-  // vertices 1 .. max_bounces+1 gather light, and vertex 1's share is the direct layer.
-  for (int k = 1; k <= params.max_bounces + 1; ++k) {
-    vec3& target = k == 1 ? out.direct : out.indirect;
-    Brdf brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, ctx.options.diffuse_only);
-    Basis basis = basis_from_normal(s.ns);
-    vec3 wo = to_local(basis, -glm::normalize(ray.direction));
-    if (wo.z <= 0.0f) break;  // grazing view under the shading normal: no reflection defined
-
-    // Every vertex draws its samples in the same order (light, BRDF, roulette), so sample set
-    // numbers line up across paths and the sets stay stratified per vertex.
-    vec2 u_light = pixel_sampler_get2d(sampler), u_brdf = pixel_sampler_get2d(sampler);
-    float u_roulette = pixel_sampler_get1d(sampler);
-    target += beta * sample_direct(ctx, s, brdf, basis, wo, u_light, counters);
-
-    BrdfSample bs;
-    if (!brdf_sample(brdf, wo, u_brdf, bs)) break;
-    vec3 wi = to_world(basis, bs.wi);
-    if (glm::dot(wi, s.ng) <= 0.0f) break;  // would pass through the surface
-
-    ray.origin = ctx.accel.offset_point(s.p, s.ng);
-    ray.direction = wi;
-    ray.tmin = 0.0f;
-    ray.tmax = kInf;
-    ++counters.bounce_rays;
-    Hit next = ctx.accel.intersect(ray);
-    if (!next.valid()) break;  // black world
-    vec3 beta_next = beta * bs.weight;
-    Surface ns = make_surface(ctx.scene, next, ray.direction);
-    if (max_component(ns.emission) > 0.0f) {
-      float light_pdf = ctx.lights.pdf_emissive_hit(s.p, next.triangle, ns.p, ns.ng);
-      target += beta_next * ns.emission * power_heuristic(bs.pdf, light_pdf);
-    }
-    beta = beta_next;
-    s = ns;
-
-    // Russian roulette after rr_min_bounces indirect bounces; k-1 have been made to reach s.
-    if (k >= params.rr_min_bounces + 1 && k <= params.max_bounces) {
-      float survive = std::min(1.0f, max_component(beta));
-      if (u_roulette >= survive) break;
-      beta /= survive;
-    }
-  }
+  PathCounters rays = path_counters();
+  Surface s;
+  bool hit = false;
+  PathSample out = trace_path(ctx.scene, ctx.lights.packed(), ctx.accel, ray.origin, ray.direction, params.max_bounces,
+                              params.rr_min_bounces, ctx.options.diffuse_only, sampler, rays, s, hit);
+  counters.primary_rays += rays.primary_rays;
+  counters.shadow_rays += rays.shadow_rays;
+  counters.bounce_rays += rays.bounce_rays;
+  if (first_hit && hit) *first_hit = s;
   return out;
 }
 

@@ -2,10 +2,14 @@
 // light sampling and BRDF sampling. `max_bounces` counts indirect bounces, as Cycles and the SST
 // paper's PT_n rows do: 0 = direct light only. It is the ground truth of every other method.
 #pragma once
+#include "core/accel/embree_accel.h"
+#include "core/lights/light_sampler.h"
 #include "core/render/method.h"
 #include "core/shading/surface.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/util/params.h"
+// The path itself, shared with the GPU, bound to the Scene, LightSampler::packed() and EmbreeAccel.
+#include "core/pt/trace_path.h"
 
 namespace sst {
 
@@ -21,15 +25,6 @@ struct PathTracerParams {
     v("rr_min_bounces", rr_min_bounces,
       "indirect bounces before Russian roulette may end a path (none, if >= max_bounces)");
   }
-};
-
-// One camera path's contribution, split the way the EXR layers are.
-struct PathSample {
-  vec3 direct{0.0f};
-  vec3 indirect{0.0f};
-  vec3 albedo{0.0f};
-  vec3 normal{0.0f};
-  float depth = 0.0f;
 };
 
 // `first_hit`, when given, receives the surface the camera ray hit (valid when the returned

@@ -7,22 +7,10 @@
 #include <string>
 
 #include "core/shading/surface.h"
-#include "core/rng/hash_rng.h"
-#include "core/sampling/sampling.h"
 #include "core/vpl/vpl_clamp.h"
 
 namespace sst {
 namespace {
-
-// Two draws as one 2D sample, the first draw in y. This was `vec2(hash_rng_next(rng), hash_rng_next(rng))`, whose
-// argument order C++ leaves to the compiler: GCC evaluated right to left. Spelled out so that every
-// compiler draws the VPL sets the results were made with; gpu/shaders/vpl_generation.comp draws
-// the same way (next_2d_as_cpu).
-vec2 next_2d(HashRng& rng) {
-  float y = hash_rng_next(rng);
-  float x = hash_rng_next(rng);
-  return {x, y};
-}
 
 // Paths are traced in fixed chunks of consecutive indices, each chunk into its own buffers, and
 // the chunks are concatenated in index order: the output never depends on which thread ran what.
@@ -37,6 +25,22 @@ struct Chunk {
   uint64_t rays = 0;
 };
 
+void deposit_vpl(Chunk& out, int hit, vec3 position, vec3 normal, vec3 intensity) {
+  out.vpls.push_back({position, normal, intensity});
+  out.hit.push_back(uint16_t(hit));
+}
+
+}  // namespace
+}  // namespace sst
+
+#define VPL_CTX_PARAM Chunk &out,
+#define VPL_CTX out,
+#define VPL_DEPOSIT(deposit, hit, position, normal, intensity) deposit_vpl(out, hit, position, normal, intensity)
+#include "core/vpl/light_path.h"
+
+namespace sst {
+namespace {
+
 struct Tracer {
   const Scene& scene;
   const EmbreeAccel& accel;
@@ -45,54 +49,11 @@ struct Tracer {
   uint32_t seed;
   bool diffuse_only;
 
-  vec3 diffuse_albedo(const Surface& s) const {
-    return diffuse_only ? s.base_color : (1.0f - s.metallic) * s.base_color;
-  }
-
-  // One light path; appends its VPLs (intensity not yet divided by the path count) to `out`.
-  // Random numbers are drawn in a fixed order: pick, position (2), direction (2), then per hit
-  // bounce direction (2) and roulette (1).
+  // One light path (core/vpl/light_path.h); appends its VPLs to `out`.
   void trace(uint32_t path, Chunk& out) const {
-    HashRng rng = hash_rng(seed, path, 0, kVplStream);
-    float u_pick = hash_rng_next(rng);
-    vec2 u_pos = next_2d(rng);
-    vec2 u_dir = next_2d(rng);
-    EmissionSample e;
-    if (!lights.sample_emission(u_pick, u_pos, u_dir, e)) return;
-    Ray ray;
-    ray.origin = e.normal == vec3(0.0f) ? e.position : accel.offset_point(e.position, e.normal);
-    ray.direction = e.direction;
-    vec3 beta = e.weight;
-    for (int hit_index = 0; hit_index < params.vpl_max_bounces; ++hit_index) {
-      ++out.rays;
-      Hit hit = accel.intersect(ray);
-      if (!hit.valid()) return;
-      Surface s = make_surface(scene, hit, ray.direction);
-      vec3 albedo = diffuse_albedo(s);
-      // Light arriving under the shading hemisphere is not reflected: the path tracer's rule.
-      if (!(glm::dot(ray.direction, s.ns) < 0.0f) || !(max_component(albedo) > 0.0f)) return;
-      vec3 intensity = beta * albedo * kInvPi;
-      if (!is_finite(intensity)) return;
-      out.vpls.push_back({s.p, s.ns, intensity});
-      out.hit.push_back(uint16_t(hit_index));
-      if (hit_index + 1 >= params.vpl_max_bounces) return;
-
-      vec2 u_bounce = next_2d(rng);
-      float u_roulette = hash_rng_next(rng);
-      if (hit_index + 1 >= params.vpl_min_bounces) {
-        float survive = std::min(1.0f, max_component(albedo));
-        if (u_roulette >= survive) return;
-        beta /= survive;
-      }
-      // Cosine-weighted about the shading normal: f cos / pdf = albedo.
-      vec3 wi = to_world(basis_from_normal(s.ns), sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
-      if (!(glm::dot(wi, s.ng) > 0.0f)) return;  // would pass through the surface
-      beta *= albedo;
-      ray.origin = accel.offset_point(s.p, s.ng);
-      ray.direction = wi;
-      ray.tmin = 0.0f;
-      ray.tmax = kInf;
-    }
+    uvec2 r = trace_light_path(scene, lights.packed(), accel, out, seed, path, params.vpl_max_bounces,
+                               params.vpl_min_bounces, diffuse_only);
+    out.rays += r.y;
   }
 
   void trace_chunk(uint64_t first_path, uint64_t end_path, Chunk& chunk) const {

@@ -2,7 +2,7 @@
 // (LightSampler::sample_emission) and deposit a VPL at every diffuse surface they hit, with
 // intensity = throughput * albedo / pi, then bounce on, cosine-weighted. Parameters: VplParams.
 //
-// Path count. Path i always uses hash_rng(seed, i, 0, kVplStream), so a path is a pure function of
+// Path count. Path i is core/vpl/light_path.h's trace_light_path(seed, i), a pure function of
 // (seed, i). Paths 0, 1, 2, ... are traced until `vpls` VPLs exist; the last path's surplus VPLs
 // are dropped, so the set has exactly `vpls` VPLs (fewer only when the scene cannot produce
 // them: see kMaxPathsPerVpl). Every intensity is divided by P, the number of paths traced up to
@@ -33,8 +33,6 @@
 
 namespace sst {
 
-// HashRng stream of VPL generation, distinct from pixel sampling (stream 0).
-inline constexpr uint32_t kVplStream = 0x56504C31u;  // "VPL1"
 // A scene that deposits fewer than one VPL per this many paths (everything black, or lights
 // that miss the geometry) stops here with fewer VPLs than asked for, instead of tracing forever.
 inline constexpr uint64_t kMaxPathsPerVpl = 64;

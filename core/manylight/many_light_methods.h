@@ -16,6 +16,7 @@
   X(slc, 2u)                      \
   X(sst, 3u)                      \
   X(rtslc, 4u)                    \
-  X(hybrid, 5u)
+  X(hybrid, 5u)                   \
+  /* a new method: a line above this one */
 
 #endif  // SST_CORE_MANYLIGHT_MANY_LIGHT_METHODS_H

@@ -63,7 +63,7 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
   // is split into slices of VPLs, one dispatch each (ManyLightPush).
   const bool lavapipe = vk.info().type == "cpu";
   const uint32_t vpl_count = inputs.params().vpl_count;
-  const bool slice_vpls = lavapipe && inputs.params().method == ML_METHOD_EXHAUSTIVE && vpl_count > 0;
+  const bool slice_vpls = lavapipe && inputs.params().method == ML_METHOD_exhaustive && vpl_count > 0;
   const size_t slice_count = slice_vpls ? pixels : 1;
   std::unique_ptr<GpuBuffer> slices_a = make_buffer(vk, slice_count, sizeof(glsl::ManyLightSlice),
                                                     "sampling: running sums of the VPL slices, pixels");

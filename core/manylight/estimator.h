@@ -1,5 +1,5 @@
-// What every indirect estimator (exhaustive, uniform, slc, sst, rtslc, hybrid) shares, written
-// once for both backends (shared C++/GLSL source): the shading point, the estimate, one VPL shaded
+// What every indirect estimator (core/manylight/<name>/<name>_estimate.h) shares, written once
+// for both backends (shared C++/GLSL source): the shading point, the estimate, one VPL shaded
 // with visibility, and the walk probability of the tree samplers.
 //
 // A kernel reads the sampler's inputs (many_light_layout.h) only through these hooks; C++ defines

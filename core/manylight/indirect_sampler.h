@@ -1,6 +1,6 @@
 // The interface every many-light method implements: given the frame's VPLs, build what the
 // method needs (a light tree, per-block cuts) and estimate the indirect light at one shading
-// point with the method's shared kernel (indirect_estimate.h). ManyLightMethod
+// point with the method's shared kernel (<name>/<name>_estimate.h). ManyLightMethod
 // (many_light_method.h) does everything around it: VPL generation, camera rays, direct light,
 // accumulation, AOVs, counters, timings.
 #pragma once
@@ -44,9 +44,10 @@ class IndirectSampler {
   // Per-frame preparation: the method's tree and cuts, then inputs(); `counters` receives
   // method-specific counters.
   void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters);
-  // One indirect sample at `point` (indirect_estimate.h, the code the Vulkan backend runs too);
-  // thread-safe. Call after prepare(). Virtual only so that tests can plant a broken estimator.
-  virtual IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const;
+  // One indirect sample at `point`: the method's estimate_<name>(inputs(), point, sampler), the
+  // function the Vulkan backend's estimate switch calls for SamplerParams.method too
+  // (gpu/shaders/indirect_sampler.glsl); thread-safe. Call after prepare().
+  virtual IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const = 0;
   // What estimate() reads: the method id and parameters, views of the VPLs, tree, cuts and mock
   // cut (the Vulkan backend uploads them). Valid until the next prepare().
   const SamplerInputs& inputs() const { return inputs_; }
@@ -55,7 +56,7 @@ class IndirectSampler {
   virtual void set_tree_builder(LightTreeBuildFn builder) {}
 
  protected:
-  // ML_METHOD_* of many_light_layout.h.
+  // ML_METHOD_<name> (many_light_layout.h, from the list many_light_methods.h).
   virtual uint32_t method_id() const = 0;
   // The method's own preparation (tree, cuts) and its part of `inputs`, which holds the
   // frame-wide part already.

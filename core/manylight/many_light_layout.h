@@ -2,8 +2,8 @@
 // light tree's nodes (core/lighttree/light_node.h), the per-block cuts of rtslc and the hybrid
 // with the G-buffer samples they were built for, the hybrid's mock cut, and one SamplerParams
 // saying which sampler runs and with what. IndirectSampler::prepare builds all of it
-// (SamplerInputs, sampler_inputs.h); the estimators (indirect_estimate.h) read it on the CPU, and
-// gpu/many_light_upload.h uploads it for gpu/shaders/indirect_sampler.glsl.
+// (SamplerInputs, sampler_inputs.h); the estimators (<name>/<name>_estimate.h) read it on the CPU,
+// and gpu/many_light_upload.h uploads it for gpu/shaders/indirect_sampler.glsl.
 //
 // Buffers, std430, in the order of MANY_LIGHT_BUFFERS(first) (and GpuManyLightInputs::buffers()):
 //   first + 0  SamplerParams ml_params        one element
@@ -18,19 +18,21 @@
 #define SST_CORE_MANYLIGHT_MANY_LIGHT_LAYOUT_H
 
 #include "core/lighttree/light_node.h"
+#include "core/manylight/many_light_methods.h"
 #include "core/math/cpu_gpu.h"
 
 SST_BEGIN
 
 #define MANY_LIGHT_BUFFER_COUNT 7
 
-// SamplerParams.method: which IndirectSampler estimate_indirect runs.
-#define ML_METHOD_EXHAUSTIVE 0u
-#define ML_METHOD_UNIFORM 1u
-#define ML_METHOD_SLC 2u
-#define ML_METHOD_SST 3u
-#define ML_METHOD_RTSLC 4u
-#define ML_METHOD_HYBRID 5u
+// SamplerParams.method: which method's estimate estimate_indirect runs, ML_METHOD_<name> for each
+// method of the list. C++ only: GLSL's switch takes the list's ids as they are, since global
+// constants in a shader make glslang's `precise` propagation take all memory.
+#ifdef __cplusplus
+#define ML_DECLARE_METHOD_ID(name, id) SST_CONSTANT uint ML_METHOD_##name = id;
+SST_MANY_LIGHT_METHODS(ML_DECLARE_METHOD_ID)
+#undef ML_DECLARE_METHOD_ID
+#endif
 
 // SamplerParams.rtslc_weights (sst::RtslcWeights).
 #define ML_RTSLC_WEIGHTS_RTSLC 0u
@@ -56,7 +58,7 @@ struct CutGuide {
 
 // Everything the samplers read besides the arrays. Fields a method does not use are 0.
 struct SamplerParams {
-  uint method;           // ML_METHOD_*
+  uint method;           // ML_METHOD_<name>
   uint vpl_count;        // ml_vpls[] length
   float clamp_distance;  // ManyLightFrame::clamp_distance
   uint tree_root;        // LightTree::root (tree samplers); kNoNode for an empty tree

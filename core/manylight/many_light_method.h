@@ -1,4 +1,4 @@
-// The pipeline shared by every VPL method (exhaustive, uniform, slc, rtslc, sst, hybrid):
+// The pipeline shared by every VPL method (the list many_light_methods.h):
 //   VPL generation -> sampler.prepare (tree, cuts) -> per pixel sample: a jittered camera ray,
 //   the direct light exactly as `pt` computes it at its first hit, and one indirect estimate
 //   from the sampler at that hit.
@@ -9,6 +9,8 @@
 #include <memory>
 
 #include "core/manylight/indirect_sampler.h"
+#include "core/manylight/many_light_methods.h"
+#include "core/render/method.h"
 #include "core/vpl/vpl_generator.h"
 
 namespace sst {
@@ -27,5 +29,11 @@ class ManyLightMethod final : public Method {
   nlohmann::json params_;
   std::unique_ptr<IndirectSampler> sampler_;
 };
+
+// The registry entry of each method of the list (many_light_methods.h): MethodInfo
+// <name>_method_info(), defined in core/manylight/<name>/<name>_method.cpp.
+#define ML_DECLARE_METHOD_INFO(name, id) MethodInfo name##_method_info();
+SST_MANY_LIGHT_METHODS(ML_DECLARE_METHOD_INFO)
+#undef ML_DECLARE_METHOD_INFO
 
 }  // namespace sst

@@ -1,6 +1,6 @@
-// What the indirect estimators (indirect_estimate.h) read, on the CPU: the sampler's parameters,
-// the VPLs, the light tree and the per-block cuts that IndirectSampler::prepare built, and the
-// scene the shadow rays are traced in. The Vulkan backend uploads the same (many_light_layout.h).
+// What the indirect estimators (<name>/<name>_estimate.h) read, on the CPU: the sampler's
+// parameters, the VPLs, the light tree and the per-block cuts that IndirectSampler::prepare built,
+// and the scene the shadow rays are traced in. The Vulkan backend uploads the same (many_light_layout.h).
 // Also the hooks through which the shared kernels reach it (estimator.h lists them).
 #pragma once
 #include <cstdint>
@@ -27,7 +27,7 @@ struct SamplerInputs {
   const EmbreeAccel* accel = nullptr;  // where shadow rays are traced
 };
 
-// Starts `out` afresh for `method` (ML_METHOD_*) with the frame-wide inputs.
+// Starts `out` afresh for `method` (ML_METHOD_<name>) with the frame-wide inputs.
 inline void begin_sampler_inputs(uint32_t method, std::span<const Vpl> vpls, float clamp_distance,
                                  const EmbreeAccel& accel, SamplerInputs& out) {
   out = {};

@@ -1,78 +1,28 @@
 #include "core/pipeline/method_registry.h"
 
-#include "core/manylight/exhaustive_sampler.h"
-#include "core/manylight/hybrid_sampler.h"
-#include "core/manylight/rtslc_sampler.h"
 #include "core/manylight/many_light_method.h"
-#include "core/manylight/many_light_params.h"
-#include "core/manylight/uniform_sampler.h"
-#include "core/manylight/slc_sampler.h"
-#include "core/manylight/sst_sampler.h"
-#include "core/manylight/tree_method_params.h"
-#include "core/pt/path_tracer.h"
+#include "core/manylight/many_light_methods.h"
+#include "core/pt/pt_method.h"
 
 namespace sst {
 namespace {
-// An entry whose parameters P are read from JSON and handed to `make(P)`.
-template <class P, class Make>
-MethodInfo entry(const char* name, const char* description, Make make) {
-  return {name, description, param_table<P>(), [name, make](const nlohmann::json& j) -> std::unique_ptr<Method> {
-            P params;
-            params_from_json(params, j, std::string("method '") + name + "'");
-            return make(params);
-          }};
-}
 
-template <class P, class M>
-MethodInfo entry(const char* name, const char* description) {
-  return entry<P>(name, description, [](const P& p) { return std::make_unique<M>(p); });
-}
-
-// A VPL method: the shared pipeline around the sampler S built from the parameters.
-template <class S>
-MethodInfo vpl_method(const char* name, const char* description) {
-  return entry<VplMethodParams>(name, description, [](const VplMethodParams& p) -> std::unique_ptr<Method> {
-    return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p), std::make_unique<S>());
-  });
+std::vector<MethodInfo> all_methods() {
+  std::vector<MethodInfo> methods = {pt_method_info()};
+  // The name a method's folder gives its MethodInfo must be its name in the list.
+  auto add = [&methods](MethodInfo info, const char* listed_as) {
+    if (info.name != listed_as)
+      throw Error("method registry: " + std::string(listed_as) + "_method_info() names its method '" + info.name + "'");
+    methods.push_back(std::move(info));
+  };
+#define ADD_MANY_LIGHT_METHOD(name, id) add(name##_method_info(), #name);
+  SST_MANY_LIGHT_METHODS(ADD_MANY_LIGHT_METHOD)
+#undef ADD_MANY_LIGHT_METHOD
+  return methods;
 }
 
 std::vector<MethodInfo>& mutable_registry() {
-  static std::vector<MethodInfo> registry = {
-      entry<PathTracerParams, PathTracer>(
-          "pt",
-          "unidirectional path tracer: next-event estimation with MIS (power heuristic), lights picked by power, close "
-          "emissive triangles sampled by solid angle and others by area; the ground truth (PT_n = --max-bounces n)"),
-      vpl_method<ExhaustiveSampler>("exhaustive", "every VPL with its shadow ray: the VPL ground truth"),
-      vpl_method<UniformSampler>("uniform", "one VPL per indirect sample, drawn uniformly"),
-      entry<TreeMethodParams>("slc",
-                              "stochastic lightcuts (Yuksel 2019): one root-to-leaf light-tree walk per sample, by "
-                              "intensity x cosine bound / distance^2",
-                              [](const TreeMethodParams& p) -> std::unique_ptr<Method> {
-                                return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p),
-                                                                         std::make_unique<SlcSampler>(p.tree));
-                              }),
-      entry<SstMethodParams>("sst",
-                             "stochastic substitute trees (Tatzgern 2020): the walk stops at a suitable node and "
-                             "samples its Gaussian substitute; diffuse and glossy lobes; biased",
-                             [](const SstMethodParams& p) -> std::unique_ptr<Method> {
-                               return std::make_unique<ManyLightMethod>(p.base.vpl, params_to_json(p),
-                                                                        std::make_unique<SstSampler>(p.base.tree, p.sst));
-                             }),
-      entry<RtslcParams>("rtslc",
-                         "real-time stochastic lightcuts (Lin & Yuksel 2020) on the perfect tree: per-block cuts, "
-                         "one walk per cut node, min/max-distance weights, interleaving",
-                         [](const RtslcParams& p) -> std::unique_ptr<Method> {
-                           return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
-                                                                    std::make_unique<RtslcSampler>(p));
-                         }),
-      entry<HybridParams>("hybrid",
-                          "shallow light cuts over an SST (hybrid thesis, ch. 5): per-block cuts blended "
-                          "stochastically between neighbours, mock cuts, substitutes; biased",
-                          [](const HybridParams& p) -> std::unique_ptr<Method> {
-                            return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
-                                                                     std::make_unique<HybridSampler>(p));
-                          }),
-  };
+  static std::vector<MethodInfo> registry = all_methods();
   return registry;
 }
 

@@ -1,24 +1,15 @@
-// The registry of methods: name -> description, parameter table, factory. Adding a method means
-// adding one entry in method_registry.cpp; the CLIs build their flags from the tables.
+// The registry of methods: each method's MethodInfo (core/render/method.h), `pt` first and then
+// the VPL methods in the order of their list (core/manylight/many_light_methods.h), from which the
+// registry is generated. The CLIs build their flags from the parameter tables.
 #pragma once
-#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "core/render/method.h"
-#include "core/util/params.h"
 
 namespace sst {
-
-struct MethodInfo {
-  std::string name;
-  std::string description;
-  std::vector<ParamInfo> params;
-  // Builds the method from its parameters; unknown keys are an error naming the key.
-  std::function<std::unique_ptr<Method>(const nlohmann::json& params)> create;
-};
 
 const std::vector<MethodInfo>& method_registry();
 

@@ -1,10 +1,12 @@
 // A rendering method (pt, or one of the many-light methods) renders one frame of a prepared scene
 // on the CPU. Methods are created by name through the registry (core/pipeline/method_registry.h),
-// which is the one place a new method is added; sst-render, sst-eval and the tests reach it there.
+// which lists each method's MethodInfo; sst-render, sst-eval and the tests reach them there.
 #pragma once
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "core/accel/embree_accel.h"
 #include "core/lights/light_sampler.h"
@@ -12,6 +14,7 @@
 #include "core/render/frame.h"
 #include "core/render/render_options.h"
 #include "core/scene/scene.h"
+#include "core/util/params.h"
 #include "core/util/stage_timer.h"
 
 namespace sst {
@@ -38,5 +41,26 @@ class Method {
   // Every parameter in effect, for the JSON record.
   virtual nlohmann::json params() const = 0;
 };
+
+// A method as the registry lists it: name -> description, parameter table, factory. Each method
+// defines its own in its folder (<name>_method_info()); the CLIs build their flags from the tables.
+struct MethodInfo {
+  std::string name;
+  std::string description;
+  std::vector<ParamInfo> params;
+  // Builds the method from its parameters; unknown keys are an error naming the key.
+  std::function<std::unique_ptr<Method>(const nlohmann::json& params)> create;
+};
+
+// The MethodInfo of a method whose parameters P (with visit()) are read from JSON and handed to
+// `make(P)`.
+template <class P, class Make>
+MethodInfo method_info(const char* name, const char* description, Make make) {
+  return {name, description, param_table<P>(), [name, make](const nlohmann::json& j) -> std::unique_ptr<Method> {
+            P params;
+            params_from_json(params, j, std::string("method '") + name + "'");
+            return make(params);
+          }};
+}
 
 }  // namespace sst

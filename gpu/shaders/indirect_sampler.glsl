@@ -1,5 +1,7 @@
-// The indirect estimators (core/manylight/indirect_estimate.h) on the GPU: their hooks bound to
-// the sampler's buffers and to the flat BVH's shadow rays.
+// The indirect estimators on the GPU: their hooks (core/manylight/estimator.h) bound to the
+// sampler's buffers and to the flat BVH's shadow rays, each method's estimate
+// (core/manylight/<name>/<name>_estimate.h), and estimate_indirect, the switch over the list of
+// methods (core/manylight/many_light_methods.h) that runs the one SamplerParams.method names.
 //
 // The includer declares, before including this file:
 //   MANY_LIGHT_BUFFERS(first)     the sampler's inputs (core/manylight/many_light_layout.h)
@@ -38,6 +40,27 @@ bool ml_occluded(vec3 x, vec3 ng, vec3 p, vec3 n) {
 #define ML_MOCK_CUT(j) ml_mock_cut[j]
 #define ML_OCCLUDED(x, ng, p, n) ml_occluded(x, ng, p, n)
 #define ML_COUNT_ITERATION() BVH_COUNT_ITERATION()
-#include "core/manylight/indirect_estimate.h"
+// One line per method of the list.
+#include "core/manylight/exhaustive/exhaustive_estimate.h"
+#include "core/manylight/uniform/uniform_estimate.h"
+#include "core/manylight/slc/slc_estimate.h"
+#include "core/manylight/sst/sst_estimate.h"
+#include "core/manylight/rtslc/rtslc_estimate.h"
+#include "core/manylight/hybrid/hybrid_estimate.h"
+
+// One indirect estimate at a shading point by the method ml_params.method names: the per-pixel
+// work of every VPL method. The pixel sampler continues the pixel sample's stream where the camera
+// ray and the direct light left it. On the CPU, IndirectSampler::estimate calls the same
+// estimate_<name>.
+IndirectEstimate estimate_indirect(ShadingPoint sp, inout PixelSampler ps) {
+  switch (ml_params.method) {
+#define ML_ESTIMATE_CASE(name, id) \
+  case id:                         \
+    return estimate_##name(sp, ps);
+    SST_MANY_LIGHT_METHODS(ML_ESTIMATE_CASE)
+#undef ML_ESTIMATE_CASE
+  }
+  return indirect_estimate_zero();
+}
 
 #endif

@@ -27,22 +27,39 @@ struct Include {
   std::string from, to;  // folders
 };
 
-// "app", "gpu" (with its subfolders) or "core/<concept>" of a path relative to the source root.
+// The folder of a path relative to the source root: "app", "gpu" (with its subfolders), or the
+// core folder that holds the file, "core/<concept>" or a folder nested in one
+// ("core/manylight/<method>").
 std::string folder_of(const std::string& path) {
-  std::vector<std::string> parts;
-  for (const auto& p : fs::path(path)) parts.push_back(p.string());
-  if (parts.size() >= 3 && parts[0] == "core") return "core/" + parts[1];
-  return parts.empty() ? "" : parts[0];
+  fs::path p(path);
+  if (p.empty()) return "";
+  std::string top = p.begin()->string();
+  return top == "core" ? p.parent_path().generic_string() : top;
 }
 
-// Layer index of each folder, 0 = top; *error describes a malformed file.
-std::map<std::string, int> read_layers(std::string* error) {
+// The layer index of each folder, 0 = top. A pattern `<folder>/*` stands for every folder directly
+// inside <folder> that the file does not name itself.
+struct Layers {
+  std::map<std::string, int> named;
+  std::map<std::string, int> patterns;  // <folder> of `<folder>/*`
+  bool empty() const { return named.empty() && patterns.empty(); }
+  // The layer of `folder`; -1 when it is not listed.
+  int of(const std::string& folder) const {
+    if (auto it = named.find(folder); it != named.end()) return it->second;
+    if (auto it = patterns.find(fs::path(folder).parent_path().generic_string()); it != patterns.end())
+      return it->second;
+    return -1;
+  }
+};
+
+// core/LAYERS.txt; *error describes a malformed file.
+Layers read_layers(std::string* error) {
   std::ifstream in(kRoot / "core" / "LAYERS.txt");
   if (!in) {
     *error = "cannot read core/LAYERS.txt";
     return {};
   }
-  std::map<std::string, int> layer;
+  Layers layers;
   std::string line;
   int index = 0;
   while (std::getline(in, line)) {
@@ -51,13 +68,16 @@ std::map<std::string, int> read_layers(std::string* error) {
     std::string folder;
     bool any = false;
     while (words >> folder) {
-      if (layer.count(folder)) *error += "core/LAYERS.txt lists " + folder + " twice\n";
-      layer[folder] = index;
+      bool pattern = folder.size() > 2 && folder.compare(folder.size() - 2, 2, "/*") == 0;
+      std::map<std::string, int>& to = pattern ? layers.patterns : layers.named;
+      std::string key = pattern ? folder.substr(0, folder.size() - 2) : folder;
+      if (to.count(key)) *error += "core/LAYERS.txt lists " + folder + " twice\n";
+      to[key] = index;
       any = true;
     }
     if (any) ++index;
   }
-  return layer;
+  return layers;
 }
 
 // Every quoted #include in app/, core/ and gpu/, resolved as the compilers do: first beside the
@@ -96,9 +116,9 @@ std::vector<Include> scan_includes(std::vector<std::string>* unresolved) {
 
 TEST(Layers, EveryIncludePointsDown) {
   std::string error;
-  std::map<std::string, int> layer = read_layers(&error);
+  Layers layers = read_layers(&error);
   ASSERT_TRUE(error.empty()) << error;
-  ASSERT_FALSE(layer.empty());
+  ASSERT_FALSE(layers.empty());
   std::vector<std::string> unresolved;
   std::vector<Include> includes = scan_includes(&unresolved);
   EXPECT_GT(includes.size(), 100u);  // the scan found the sources
@@ -106,11 +126,11 @@ TEST(Layers, EveryIncludePointsDown) {
   std::set<std::string> unlisted;
   for (const Include& inc : includes) {
     for (const std::string& f : {inc.from, inc.to})
-      if (!layer.count(f) && unlisted.insert(f).second)
+      if (layers.of(f) < 0 && unlisted.insert(f).second)
         ADD_FAILURE() << "folder " << f << " (" << (f == inc.from ? inc.file : inc.target)
                       << ") is not listed in core/LAYERS.txt";
-    if (inc.from == inc.to || !layer.count(inc.from) || !layer.count(inc.to)) continue;
-    int from = layer[inc.from], to = layer[inc.to];
+    int from = layers.of(inc.from), to = layers.of(inc.to);
+    if (inc.from == inc.to || from < 0 || to < 0) continue;
     if (to <= from)
       ADD_FAILURE() << inc.file << ":" << inc.line << ": #include \"" << inc.target << "\": " << inc.from
                     << " (layer " << from << ") includes " << inc.to << " (layer " << to << "), "

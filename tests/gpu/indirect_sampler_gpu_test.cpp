@@ -10,24 +10,22 @@
 
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <map>
 #include <memory>
 #include <ostream>
+#include <string>
+#include <vector>
 
 #include "core/accel/flat_bvh.h"
-#include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/many_light_method.h"
 #include "core/manylight/sampler_inputs.h"
-#include "core/manylight/hybrid_sampler.h"
-#include "core/manylight/rtslc_sampler.h"
-#include "core/manylight/slc_sampler.h"
-#include "core/manylight/sst_sampler.h"
-#include "core/manylight/uniform_sampler.h"
+#include "core/pipeline/method_registry.h"
 #include "core/pt/path_tracer.h"
 #include "core/scene/default_scene.h"
 #include "gpu/compute_pipeline.h"
 #include "gpu/gbuffer_pass.h"
 #include "gpu/many_light_upload.h"
+#include "tests/core/manylight/many_light_test_util.h"
 #include "tests/gpu/gpu_test_util.h"
 
 namespace sst::gpu {
@@ -195,84 +193,45 @@ std::vector<IndirectTestResult> run_gpu(const TestFrame& f, const SamplerInputs&
   return results;
 }
 
-// One sampler configuration on one frame. kVpls: 300, not a power of two, so that the perfect
-// trees have padding leaves; 0, 1 and 3 VPLs are the degenerate sets (no tree, a lone leaf).
+// One sampler configuration on one frame: method `method` of the registry with `params`. kVpls:
+// 300, not a power of two, so that the perfect trees have padding leaves; 0, 1 and 3 VPLs are the
+// degenerate sets (no tree, a lone leaf).
 constexpr int kVpls = 300;
 struct Case {
-  const char* name;
+  std::string name;
   bool diffuse_only;
   int vpls;
-  std::function<std::unique_ptr<IndirectSampler>()> make;
+  std::string method;
+  nlohmann::json params;
 };
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
 
-LightTreeParams tree_params(const char* kind) {
-  LightTreeParams p;
-  p.tree = kind;
-  return p;
-}
-
-RtslcParams rtslc_params(int interleave, const char* weights, int block_size = 8) {
-  RtslcParams p;
-  p.interleave = interleave;
-  p.weights = weights;
-  p.block_size = block_size;
-  return p;
-}
-
-SstParams sst_params(bool substitutes) {
-  SstParams p;
-  p.substitutes = substitutes;
-  return p;
-}
-
-HybridParams hybrid_params(int block_size, float n_min) {
-  HybridParams p;
-  p.block_size = block_size;
-  p.n_min = n_min;
-  return p;
-}
-
+// Every VPL method of the list with its default parameters on the glossy frame and on the
+// degenerate sets, and variants that take other paths through a method's kernels.
 std::vector<Case> cases() {
-  auto exhaustive = [] { return std::make_unique<ExhaustiveSampler>(); };
-  auto uniform = [] { return std::make_unique<UniformSampler>(); };
-  auto slc = [] { return std::make_unique<SlcSampler>(LightTreeParams{}); };
-  auto sst = [] { return std::make_unique<SstSampler>(LightTreeParams{}, SstParams{}); };
-  auto rtslc = [] { return std::make_unique<RtslcSampler>(rtslc_params(1, "rtslc")); };
-  auto hybrid = [] { return std::make_unique<HybridSampler>(HybridParams{}); };
-  return {
-      {"exhaustive", false, kVpls, exhaustive},
-      {"uniform", false, kVpls, uniform},
-      {"slc", false, kVpls, slc},
-      {"slc_perfect_tree", false, kVpls, [] { return std::make_unique<SlcSampler>(tree_params("perfect")); }},
-      {"sst", false, kVpls, sst},
-      {"sst_diffuse_only", true, kVpls, sst},
-      {"sst_no_substitutes", false, kVpls, [] { return std::make_unique<SstSampler>(LightTreeParams{}, sst_params(false)); }},
-      {"sst_agglomerative", true, kVpls,
-       [] { return std::make_unique<SstSampler>(tree_params("agglomerative"), SstParams{}); }},
-      {"rtslc", false, kVpls, rtslc},
-      {"rtslc_interleave2", false, kVpls, [] { return std::make_unique<RtslcSampler>(rtslc_params(2, "rtslc")); }},
-      {"rtslc_interleave4", false, kVpls, [] { return std::make_unique<RtslcSampler>(rtslc_params(4, "rtslc")); }},
-      {"rtslc_slc_weights", true, kVpls, [] { return std::make_unique<RtslcSampler>(rtslc_params(1, "slc")); }},
-      {"rtslc_block_size1", false, kVpls, [] { return std::make_unique<RtslcSampler>(rtslc_params(2, "rtslc", 1)); }},
-      {"hybrid", false, kVpls, hybrid},
-      {"hybrid_diffuse_only", true, kVpls, hybrid},
-      {"hybrid_mock_cut", false, kVpls, [] { return std::make_unique<HybridSampler>(hybrid_params(8, 1.0f)); }},
-      {"hybrid_one_block", false, kVpls, [] { return std::make_unique<HybridSampler>(hybrid_params(1000, 0.9f)); }},
-      {"no_vpls_exhaustive", false, 0, exhaustive},
-      {"no_vpls_uniform", false, 0, uniform},
-      {"no_vpls_slc", false, 0, slc},
-      {"no_vpls_sst", false, 0, sst},
-      {"no_vpls_rtslc", false, 0, rtslc},
-      {"no_vpls_hybrid", false, 0, hybrid},
-      {"one_vpl_slc", false, 1, slc},
-      {"one_vpl_sst", false, 1, sst},
-      {"one_vpl_rtslc", false, 1, rtslc},
-      {"one_vpl_hybrid", false, 1, hybrid},
-      {"three_vpls_sst", false, 3, sst},
-      {"three_vpls_rtslc", false, 3, rtslc},
-      {"three_vpls_hybrid", false, 3, hybrid},
+  std::vector<Case> cases;
+  const nlohmann::json defaults = nlohmann::json::object();
+  for (const std::string& m : test::many_light_method_names()) {
+    cases.push_back({m, false, kVpls, m, defaults});
+    cases.push_back({"no_vpls_" + m, false, 0, m, defaults});
+    cases.push_back({"one_vpl_" + m, false, 1, m, defaults});
+    cases.push_back({"three_vpls_" + m, false, 3, m, defaults});
+  }
+  std::vector<Case> variants = {
+      {"slc_perfect_tree", false, kVpls, "slc", {{"tree", "perfect"}}},
+      {"sst_diffuse_only", true, kVpls, "sst", defaults},
+      {"sst_no_substitutes", false, kVpls, "sst", {{"substitutes", false}}},
+      {"sst_agglomerative", true, kVpls, "sst", {{"tree", "agglomerative"}}},
+      {"rtslc_interleave2", false, kVpls, "rtslc", {{"interleave", 2}}},
+      {"rtslc_interleave4", false, kVpls, "rtslc", {{"interleave", 4}}},
+      {"rtslc_slc_weights", true, kVpls, "rtslc", {{"weights", "slc"}}},
+      {"rtslc_block_size1", false, kVpls, "rtslc", {{"interleave", 2}, {"block_size", 1}}},
+      {"hybrid_diffuse_only", true, kVpls, "hybrid", defaults},
+      {"hybrid_mock_cut", false, kVpls, "hybrid", {{"n_min", 1.0}}},
+      {"hybrid_one_block", false, kVpls, "hybrid", {{"block_size", 1000}}},
   };
+  cases.insert(cases.end(), variants.begin(), variants.end());
+  return cases;
 }
 
 // How the GPU's estimates agree with the CPU's at the same points.
@@ -327,15 +286,17 @@ TEST_P(GpuIndirectSampler, EqualsTheCpuEstimatePerShadingPoint) {
   const Case& c = GetParam();
   const TestFrame& f = test_frame(c.diffuse_only, c.vpls);
   ManyLightFrame mlf = f.frame();
-  std::unique_ptr<IndirectSampler> sampler = c.make();
+  // The method owns its sampler; its VPL parameters go unused (the frame brings the VPLs).
+  std::unique_ptr<Method> method = create_method(c.method, c.params);
+  IndirectSampler& sampler = dynamic_cast<ManyLightMethod&>(*method).sampler();
   StageTimer timer;
   nlohmann::json counters;
-  sampler->prepare(mlf, timer, counters);
-  Agreement a = compare_with_cpu(f, *sampler, mlf, run_gpu(f, sampler->inputs()));
+  sampler.prepare(mlf, timer, counters);
+  Agreement a = compare_with_cpu(f, sampler, mlf, run_gpu(f, sampler.inputs()));
   std::printf(
       "%-20s %zu points (%zu lit), %.2f nodes and %.2f shadow rays per point: differ in sets %zu, nodes %zu, "
       "shadow rays %zu, value %zu (others within %.1e relative); RMSE / mean %.2e\n",
-      c.name, a.points, a.lit, a.nodes_per_point, a.rays_per_point, a.sets_differ, a.nodes_differ, a.rays_differ,
+      c.name.c_str(), a.points, a.lit, a.nodes_per_point, a.rays_per_point, a.sets_differ, a.nodes_differ, a.rays_differ,
       a.values_differ, a.worst_agreeing, a.rmse_over_mean);
   ASSERT_GT(a.points, 500u);
   if (c.vpls == 0) {
@@ -354,7 +315,7 @@ TEST_P(GpuIndirectSampler, EqualsTheCpuEstimatePerShadingPoint) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, GpuIndirectSampler, ::testing::ValuesIn(cases()),
-                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+                         [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
 
 }  // namespace
 }  // namespace sst::gpu

@@ -10,9 +10,9 @@
 #include "core/eval/merge.h"
 #include "core/eval/metrics_check.h"
 #include "core/eval/run_executor.h"
-#include "core/manylight/exhaustive_sampler.h"
+#include "core/manylight/exhaustive/exhaustive_sampler.h"
 #include "core/manylight/many_light_method.h"
-#include "core/manylight/slc_sampler.h"
+#include "core/manylight/slc/slc_sampler.h"
 #include "core/pipeline/method_registry.h"
 #include "core/scene/default_scene.h"
 #include "core/util/error.h"
@@ -155,7 +155,7 @@ class SwappedWeightsSlc final : public TreeSamplerBase {
   }
 
  protected:
-  uint32_t method_id() const override { return ML_METHOD_SLC; }
+  uint32_t method_id() const override { return ML_METHOD_slc; }
 };
 
 TEST(Sweep, MetricsCheckPassesOnCleanCodeAndFailsOnSwappedWeights) {

@@ -1,8 +1,9 @@
-// Extremes (acceptance 3): every many-light method, rendered with extreme scene scales, VPL
-// counts, tree/cut/block/interleave parameters and sample counts, either finishes with all-finite
-// pixels in every layer (color, direct, indirect, indirect_variance, ...) and no discarded
-// non-finite samples, or throws sst::Error naming the offending parameter. One axis varies at a
-// time from a per-method base, plus the scale axis for every method. Degenerate VPL sets that a
+// Extremes (acceptance 3): every many-light method of the list, rendered with extreme scene
+// scales, VPL counts, tree/cut/block/interleave parameters and sample counts, either finishes with
+// all-finite pixels in every layer (color, direct, indirect, indirect_variance, ...) and no
+// discarded non-finite samples, or throws sst::Error naming the offending parameter. One axis
+// varies at a time from a per-method base, plus the scale axis for every method; a parameter's
+// cases run for every method that has the parameter. Degenerate VPL sets that a
 // render cannot produce on demand (all VPLs at one point, zero intensities) are tested at the
 // sampler level on hand-made sets.
 #include <gtest/gtest.h>
@@ -15,10 +16,10 @@
 
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
-#include "core/manylight/hybrid_sampler.h"
-#include "core/manylight/rtslc_sampler.h"
-#include "core/manylight/slc_sampler.h"
-#include "core/manylight/sst_sampler.h"
+#include "core/manylight/hybrid/hybrid_sampler.h"
+#include "core/manylight/rtslc/rtslc_sampler.h"
+#include "core/manylight/slc/slc_sampler.h"
+#include "core/manylight/sst/sst_sampler.h"
 #include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"
 #include "core/rng/sobol_sampler.h"
@@ -26,6 +27,7 @@
 #include "core/util/error.h"
 #include "core/vpl/vpl_shading.h"
 #include "tests/analytic_scenes.h"
+#include "tests/core/manylight/many_light_test_util.h"
 
 namespace sst {
 namespace {
@@ -52,10 +54,8 @@ std::string sanitize(std::string s) {
 
 std::vector<ExtremeCase> all_cases() {
   std::vector<ExtremeCase> cases;
-  const std::vector<std::string> methods = {"exhaustive", "uniform", "slc", "sst", "rtslc", "hybrid"};
-  for (const std::string& m : methods) {
-    bool tree = m != "exhaustive" && m != "uniform";
-    bool cuts = m == "rtslc" || m == "hybrid";
+  for (const std::string& m : test::many_light_method_names()) {
+    auto has = [&m](const char* key) { return test::has_param(m, key); };
     auto add = [&](std::string name, nlohmann::json p, std::string key, int width = 6, int spp = 2, float scale = 1.0f,
                    bool diffuse_only = true) {
       if (!p.contains("vpls")) p["vpls"] = 200;
@@ -76,19 +76,19 @@ std::vector<ExtremeCase> all_cases() {
     add("spp_256", {{"vpls", 50}}, "", 4, 256);
     // Glossy materials (not diffuse_only).
     add("glossy", nlohmann::json::object(), "", 6, 2, 1.0f, false);
-    if (tree) {
+    if (has("v_min")) {
       add("v_min_0", {{"v_min", 0.0}}, "v_min");
       add("v_min_1", {{"v_min", 1.0}}, "v_min");
       add("sigma_max_0", {{"sigma_max", 0.0}}, "sigma_max");
       add("sigma_max_1e6", {{"sigma_max", 1e6}}, "sigma_max");
       add("v_min_0_sigma_max_1e6_vpls_1000", {{"v_min", 0.0}, {"sigma_max", 1e6}, {"vpls", 1000}}, "sigma_max");
     }
-    if (m == "sst") {
+    if (has("substitutes")) {
       add("substitutes_false", {{"substitutes", false}}, "substitutes");
       add("distance_floor_0", {{"distance_floor", 0.0}}, "distance_floor");
       add("distance_floor_0_scale_1em3", {{"distance_floor", 0.0}}, "distance_floor", 6, 2, 1e-3f);
     }
-    if (cuts) {
+    if (has("block_size")) {
       add("block_size_1", {{"block_size", 1}}, "block_size");
       add("block_size_1000", {{"block_size", 1000}}, "block_size");
       add("cut_size_1", {{"cut_size", 1}}, "cut_size");
@@ -96,12 +96,12 @@ std::vector<ExtremeCase> all_cases() {
       add("cut_size_32_vpls_3", {{"cut_size", 32}, {"vpls", 3}}, "cut_size");
       add("cut_size_32_block_size_1", {{"cut_size", 32}, {"block_size", 1}}, "cut_size");
     }
-    if (m == "rtslc") {
+    if (has("interleave")) {
       for (int r : {1, 2, 4}) add("interleave_" + std::to_string(r), {{"interleave", r}}, "interleave", 8);
       add("interleave_4_cut_size_1", {{"interleave", 4}, {"cut_size", 1}}, "interleave", 8);
       add("interleave_4_vpls_1", {{"interleave", 4}, {"vpls", 1}}, "interleave", 8);
     }
-    if (m == "hybrid") {
+    if (has("n_min")) {
       add("n_min_1", {{"n_min", 1.0}}, "n_min");
       add("n_min_m1_d_max_10", {{"n_min", -1.0}, {"d_max", 10.0}}, "d_max");
     }
@@ -166,20 +166,21 @@ struct BadCase {
 
 std::vector<BadCase> bad_cases() {
   std::vector<BadCase> cases;
-  for (std::string m : {"exhaustive", "uniform", "slc", "sst", "rtslc", "hybrid"}) {
+  for (const std::string& m : test::many_light_method_names()) {
+    auto has = [&m](const char* key) { return test::has_param(m, key); };
     cases.push_back({m, "vpls_0", {{"vpls", 0}}, "vpls", false});
     cases.push_back({m, "vpls_m1", {{"vpls", -1}}, "vpls"});
-    if (m != "exhaustive" && m != "uniform") {
+    if (has("v_min")) {
       cases.push_back({m, "v_min_m0_1", {{"v_min", -0.1}}, "v_min"});
       cases.push_back({m, "v_min_1_1", {{"v_min", 1.1}}, "v_min"});
       cases.push_back({m, "sigma_max_m1", {{"sigma_max", -1.0}}, "sigma_max"});
     }
-    if (m == "rtslc" || m == "hybrid") {
+    if (has("cut_size")) {
       cases.push_back({m, "cut_size_0", {{"cut_size", 0}}, "cut_size"});
       cases.push_back({m, "cut_size_33", {{"cut_size", 33}}, "cut_size"});
       cases.push_back({m, "block_size_0", {{"block_size", 0}}, "block_size"});
     }
-    if (m == "rtslc") {
+    if (has("interleave")) {
       cases.push_back({m, "interleave_0", {{"interleave", 0}}, "interleave"});
       cases.push_back({m, "interleave_3", {{"interleave", 3}}, "interleave"});
       cases.push_back({m, "interleave_8", {{"interleave", 8}}, "interleave"});

@@ -5,11 +5,31 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/lighttree/light_tree.h"
+#include "core/manylight/many_light_methods.h"
+#include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
 
 namespace sst::test {
+
+// The names of the VPL methods, from their list: the methods every test over "each VPL method"
+// runs.
+inline std::vector<std::string> many_light_method_names() {
+  return {
+#define ML_TEST_METHOD_NAME(name, id) #name,
+      SST_MANY_LIGHT_METHODS(ML_TEST_METHOD_NAME)
+#undef ML_TEST_METHOD_NAME
+  };
+}
+
+// Whether method `method` has parameter `key`: tests pick the cases of a method by its parameters.
+inline bool has_param(const std::string& method, const std::string& key) {
+  for (const ParamInfo& p : find_method(method).params)
+    if (p.name == key) return true;
+  return false;
+}
 
 // Relative tolerance of a tree walk's float probability against the exact one computed in double
 // from the same float weights: per level, the weights' sum, the division and the product each

@@ -1,4 +1,4 @@
-#include "core/manylight/sst_sampler.h"
+#include "core/manylight/sst/sst_sampler.h"
 
 namespace sst {
 

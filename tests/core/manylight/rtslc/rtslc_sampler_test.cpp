@@ -1,7 +1,7 @@
 // rtslc: exact traversal probabilities against observed frequencies, cut invariants,
 // unbiasedness against exhaustive on the same VPLs, parameter extremes and errors; the same for
 // the `weights slc` variant (Yuksel 2019's traversal weights below RTSLC's cuts).
-#include "core/manylight/rtslc_sampler.h"
+#include "core/manylight/rtslc/rtslc_sampler.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include <bit>
 
-#include "core/manylight/slc_sampler.h"
+#include "core/manylight/slc/slc_sampler.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"

@@ -3,11 +3,11 @@
 // parameters). The pixel's block has a cut (built at a random pivot pixel); the pixel walks once
 // from each of its cut nodes (every r^2-th with interleaving) to a leaf and sums the one-VPL
 // estimates, each times r^2 / its walk's probability. Float throughout, as the paper's GPU code.
-#ifndef SST_CORE_MANYLIGHT_RTSLC_ESTIMATE_H
-#define SST_CORE_MANYLIGHT_RTSLC_ESTIMATE_H
+#ifndef SST_CORE_MANYLIGHT_RTSLC_RTSLC_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_RTSLC_RTSLC_ESTIMATE_H
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/estimator.h"
-#include "core/manylight/slc_estimate.h"
+#include "core/manylight/slc/slc_estimate.h"
 
 SST_BEGIN
 
@@ -131,4 +131,4 @@ SST_FUNC IndirectEstimate estimate_rtslc(ML_CTX_PARAM SST_IN(ShadingPoint) sp, S
 
 SST_END
 
-#endif  // SST_CORE_MANYLIGHT_RTSLC_ESTIMATE_H
+#endif  // SST_CORE_MANYLIGHT_RTSLC_RTSLC_ESTIMATE_H

@@ -1,8 +1,8 @@
 // `exhaustive`, the estimate at one shading point (shared C++/GLSL source): every VPL with its
 // shadow ray, summed in VPL order. Deterministic given the shading point; the VPL ground truth
 // the unbiased samplers converge to (METHODS.md section 3).
-#ifndef SST_CORE_MANYLIGHT_EXHAUSTIVE_ESTIMATE_H
-#define SST_CORE_MANYLIGHT_EXHAUSTIVE_ESTIMATE_H
+#ifndef SST_CORE_MANYLIGHT_EXHAUSTIVE_EXHAUSTIVE_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_EXHAUSTIVE_EXHAUSTIVE_ESTIMATE_H
 #include "core/manylight/estimator.h"
 
 SST_BEGIN
@@ -22,10 +22,12 @@ SST_FUNC IndirectEstimate estimate_exhaustive_range(ML_CTX_PARAM SST_IN(ShadingP
   return e;
 }
 
-SST_FUNC IndirectEstimate estimate_exhaustive(ML_CTX_PARAM SST_IN(ShadingPoint) sp) {
+// `ps` is unused (the sum draws nothing); every estimate_<name> takes it, so that the estimate
+// switch calls them alike.
+SST_FUNC IndirectEstimate estimate_exhaustive(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_INOUT(PixelSampler) ps) {
   return estimate_exhaustive_range(ML_CTX sp, 0u, ML_PARAMS.vpl_count, vec3(0.0f));
 }
 
 SST_END
 
-#endif  // SST_CORE_MANYLIGHT_EXHAUSTIVE_ESTIMATE_H
+#endif  // SST_CORE_MANYLIGHT_EXHAUSTIVE_EXHAUSTIVE_ESTIMATE_H

@@ -25,7 +25,7 @@
 
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
-#include "core/manylight/hybrid_estimate.h"
+#include "core/manylight/hybrid/hybrid_estimate.h"
 #include "core/manylight/indirect_sampler.h"
 #include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
@@ -65,9 +65,12 @@ class HybridSampler final : public TreeSamplerBase {
   explicit HybridSampler(const HybridParams& params);
   const BlockCuts& cuts() const { return cuts_; }
   std::span<const uint32_t> mock_cut() const { return mock_cut_; }
+  IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
+    return estimate_hybrid(inputs(), point, sampler);
+  }
 
  protected:
-  uint32_t method_id() const override { return ML_METHOD_HYBRID; }
+  uint32_t method_id() const override { return ML_METHOD_hybrid; }
   void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:

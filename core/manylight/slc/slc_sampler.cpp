@@ -1,4 +1,4 @@
-#include "core/manylight/slc_sampler.h"
+#include "core/manylight/slc/slc_sampler.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "core/manylight/hybrid_sampler.h"
+#include "core/manylight/hybrid/hybrid_sampler.h"
 
 #include <tbb/parallel_for.h>
 

@@ -3,7 +3,7 @@
 // substitutes, and the traversal depth against slc.
 #include <gtest/gtest.h>
 
-#include "core/manylight/sst_sampler.h"
+#include "core/manylight/sst/sst_sampler.h"
 #include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"
 #include "core/scene/default_scene.h"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/lighttree/box_bounds.h"
-#include "core/manylight/slc_sampler.h"
+#include "core/manylight/slc/slc_sampler.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
 #include "core/rng/hash_rng.h"

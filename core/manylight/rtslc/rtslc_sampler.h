@@ -14,7 +14,7 @@
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/block_cuts.h"
 #include "core/manylight/indirect_sampler.h"
-#include "core/manylight/rtslc_estimate.h"
+#include "core/manylight/rtslc/rtslc_estimate.h"
 #include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
 
@@ -65,9 +65,12 @@ class RtslcSampler final : public TreeSamplerBase {
  public:
   explicit RtslcSampler(const RtslcParams& params);
   const BlockCuts& cuts() const { return cuts_; }
+  IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
+    return estimate_rtslc(inputs(), point, sampler);
+  }
 
  protected:
-  uint32_t method_id() const override { return ML_METHOD_RTSLC; }
+  uint32_t method_id() const override { return ML_METHOD_rtslc; }
   void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:

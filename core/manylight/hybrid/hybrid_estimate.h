@@ -5,8 +5,8 @@
 // from that cut's node i with expected-contribution weights to a leaf or a suitable node (a point
 // light drawn from its Gaussian); with no similar block it walks from every node of the mock cut.
 // Float throughout, as the thesis's GPU code.
-#ifndef SST_CORE_MANYLIGHT_HYBRID_ESTIMATE_H
-#define SST_CORE_MANYLIGHT_HYBRID_ESTIMATE_H
+#ifndef SST_CORE_MANYLIGHT_HYBRID_HYBRID_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_HYBRID_HYBRID_ESTIMATE_H
 #include "core/lighttree/box_bounds.h"
 #include "core/math/accurate_math.h"
 #include "core/manylight/estimator.h"
@@ -139,4 +139,4 @@ SST_FUNC IndirectEstimate estimate_hybrid(ML_CTX_PARAM SST_IN(ShadingPoint) sp, 
 
 SST_END
 
-#endif  // SST_CORE_MANYLIGHT_HYBRID_ESTIMATE_H
+#endif  // SST_CORE_MANYLIGHT_HYBRID_HYBRID_ESTIMATE_H

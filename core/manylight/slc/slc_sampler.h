@@ -15,7 +15,7 @@
 
 #include "core/lighttree/light_tree.h"
 #include "core/manylight/indirect_sampler.h"
-#include "core/manylight/slc_estimate.h"
+#include "core/manylight/slc/slc_estimate.h"
 #include "core/manylight/tree_method_params.h"
 #include "core/manylight/tree_sampler_base.h"
 
@@ -51,9 +51,12 @@ inline bool stop_at_leaves(const LightNode& node) { return node.is_leaf(); }
 class SlcSampler final : public TreeSamplerBase {
  public:
   explicit SlcSampler(LightTreeParams params) : TreeSamplerBase(std::move(params)) {}
+  IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
+    return estimate_slc(inputs(), point, sampler);
+  }
 
  protected:
-  uint32_t method_id() const override { return ML_METHOD_SLC; }
+  uint32_t method_id() const override { return ML_METHOD_slc; }
 };
 
 }  // namespace sst

@@ -1,7 +1,7 @@
 // hybrid: expected-contribution weights, finite images at the extremes, parameter errors, the
 // mean image close to exhaustive (the method is biased by design, so only loosely), and the
 // nodes visited per traversal against rtslc.
-#include "core/manylight/hybrid_sampler.h"
+#include "core/manylight/hybrid/hybrid_sampler.h"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // `uniform`, the estimate at one shading point (shared C++/GLSL source): one VPL drawn uniformly,
 // weighted by the VPL count. The simplest unbiased many-light sampler, the baseline of the others.
-#ifndef SST_CORE_MANYLIGHT_UNIFORM_ESTIMATE_H
-#define SST_CORE_MANYLIGHT_UNIFORM_ESTIMATE_H
+#ifndef SST_CORE_MANYLIGHT_UNIFORM_UNIFORM_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_UNIFORM_UNIFORM_ESTIMATE_H
 #include "core/manylight/estimator.h"
 
 SST_BEGIN
@@ -20,4 +20,4 @@ SST_FUNC IndirectEstimate estimate_uniform(ML_CTX_PARAM SST_IN(ShadingPoint) sp,
 
 SST_END
 
-#endif  // SST_CORE_MANYLIGHT_UNIFORM_ESTIMATE_H
+#endif  // SST_CORE_MANYLIGHT_UNIFORM_UNIFORM_ESTIMATE_H

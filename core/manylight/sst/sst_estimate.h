@@ -3,8 +3,8 @@
 // Per sample: pick a lobe, walk the tree with w = M * G * I, stop at a leaf or (diffuse lobe, with
 // substitutes) at the first suitable node, whose Gaussian gives a point light; shade it divided by
 // the walk's and the lobe's probability.
-#ifndef SST_CORE_MANYLIGHT_SST_ESTIMATE_H
-#define SST_CORE_MANYLIGHT_SST_ESTIMATE_H
+#ifndef SST_CORE_MANYLIGHT_SST_SST_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_SST_SST_ESTIMATE_H
 #include "core/lighttree/box_bounds.h"
 #include "core/math/accurate_math.h"
 #include "core/manylight/estimator.h"
@@ -157,4 +157,4 @@ SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
 
 SST_END
 
-#endif  // SST_CORE_MANYLIGHT_SST_ESTIMATE_H
+#endif  // SST_CORE_MANYLIGHT_SST_SST_ESTIMATE_H

@@ -5,8 +5,8 @@
 // (distance ignored for both when x is within one box diagonal of either child: the 1/d^2 bound
 // is meaningless there and would starve the sibling) and shades the leaf's VPL divided by the
 // walk's probability.
-#ifndef SST_CORE_MANYLIGHT_SLC_ESTIMATE_H
-#define SST_CORE_MANYLIGHT_SLC_ESTIMATE_H
+#ifndef SST_CORE_MANYLIGHT_SLC_SLC_ESTIMATE_H
+#define SST_CORE_MANYLIGHT_SLC_SLC_ESTIMATE_H
 #include "core/lighttree/box_bounds.h"
 #include "core/manylight/estimator.h"
 
@@ -56,4 +56,4 @@ SST_FUNC IndirectEstimate estimate_slc(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
 
 SST_END
 
-#endif  // SST_CORE_MANYLIGHT_SLC_ESTIMATE_H
+#endif  // SST_CORE_MANYLIGHT_SLC_SLC_ESTIMATE_H

@@ -1,4 +1,4 @@
-#include "core/manylight/rtslc_sampler.h"
+#include "core/manylight/rtslc/rtslc_sampler.h"
 
 #include <tbb/parallel_for.h>
 

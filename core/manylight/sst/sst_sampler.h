@@ -33,8 +33,8 @@
 // a stop, and sst is an unbiased (w.r.t. exhaustive) light-tree sampler with the weights above
 // (LightTreeParams caps v_min at 1, which does not exclude internal nodes of equal normals).
 #pragma once
-#include "core/manylight/slc_sampler.h"
-#include "core/manylight/sst_estimate.h"
+#include "core/manylight/slc/slc_sampler.h"
+#include "core/manylight/sst/sst_estimate.h"
 
 namespace sst {
 
@@ -77,9 +77,12 @@ StopRule sst_stop_rule(SstLobe lobe, bool substitutes = true);
 class SstSampler final : public TreeSamplerBase {
  public:
   SstSampler(LightTreeParams params, SstParams sst) : TreeSamplerBase(std::move(params)), sst_(sst) {}
+  IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
+    return estimate_sst(inputs(), point, sampler);
+  }
 
  protected:
-  uint32_t method_id() const override { return ML_METHOD_SST; }
+  uint32_t method_id() const override { return ML_METHOD_sst; }
   void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:

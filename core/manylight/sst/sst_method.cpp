@@ -1,0 +1,17 @@
+// `sst` as the registry lists it: name, description, parameters and factory.
+#include "core/manylight/sst/sst_sampler.h"
+#include "core/manylight/many_light_method.h"
+
+namespace sst {
+
+MethodInfo sst_method_info() {
+  return method_info<SstMethodParams>("sst",
+                                      "stochastic substitute trees (Tatzgern 2020): the walk stops at a suitable node "
+                                      "and samples its Gaussian substitute; diffuse and glossy lobes; biased",
+                                      [](const SstMethodParams& p) -> std::unique_ptr<Method> {
+                                        return std::make_unique<ManyLightMethod>(
+                                            p.base.vpl, params_to_json(p), std::make_unique<SstSampler>(p.base.tree, p.sst));
+                                      });
+}
+
+}  // namespace sst

@@ -1,22 +1,22 @@
 #include "gpu/gbuffer_pass.h"
 
-#include "gpu/frame_params.h"
+#include "gpu/view_params.h"
 
 namespace sst::gpu {
 
 GBufferImages render_gbuffer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                              const PinholeCamera& camera, int width, int height, uint32_t seed, int spp) {
-  glsl::FrameParams frame = frame_params(camera, width, height, seed);
-  frame.spp = uint32_t(spp);
+  glsl::ViewParams view = view_params(camera, width, height, seed);
+  view.spp = uint32_t(spp);
 
   const size_t pixels = size_t(width) * size_t(height);
   GpuBuffer out(context, pixels * sizeof(glsl::GBufferTexel));
   std::vector<const GpuBuffer*> buffers = scene.buffers();
   for (const GpuBuffer* buffer : bvh.buffers()) buffers.push_back(buffer);
   buffers.push_back(&out);
-  ComputePipeline pipeline(context, "gbuffer", uint32_t(buffers.size()), sizeof frame);
+  ComputePipeline pipeline(context, "gbuffer", uint32_t(buffers.size()), sizeof view);
   GBufferImages images;
-  images.gpu_ms = pipeline.dispatch(buffers, &frame, (uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
+  images.gpu_ms = pipeline.dispatch(buffers, &view, (uint32_t(width) + 7) / 8, (uint32_t(height) + 7) / 8);
 
   std::vector<glsl::GBufferTexel> texels(pixels);
   out.download(std::span<glsl::GBufferTexel>(texels));

@@ -24,7 +24,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
                              ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms);
   });
   if (!vpl_params.export_vpls.empty()) write_vpls_ply(vpl_params.export_vpls, vpls);
-  ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
+  VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
   // Radix and perfect trees are built on the GPU, agglomerative ones on the CPU. The builder's
   // shaders are compiled in stage shader_compile, like the sampling shader.
@@ -38,7 +38,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
     *built_on = "gpu";
     return tree_builder->build(v, p, scene_bounds, stats);
   });
-  sampler.prepare(mlf, timer, frame.method_counters);
+  sampler.prepare(lighting, timer, frame.method_counters);
   sampler.set_tree_builder({});
 
   const SamplerInputs& in = sampler.inputs();

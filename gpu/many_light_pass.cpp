@@ -4,7 +4,7 @@
 
 #include "core/accel/bvh_layout.h"
 #include "gpu/compute_pipeline.h"
-#include "gpu/frame_params.h"
+#include "gpu/view_params.h"
 #include "gpu/sample_chunks.h"
 #include "core/render/frame_layout.h"
 
@@ -80,13 +80,13 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
 
   ManyLightPassOutput out;
 
-  ManyLightPush push{frame_params(camera, width, height, seed), gpu.ray_epsilon(), diffuse_only ? 1u : 0u, 0u,
+  ManyLightPush push{view_params(camera, width, height, seed), gpu.ray_epsilon(), diffuse_only ? 1u : 0u, 0u,
                      0xFFFFFFFFu, ML_SLICE_FIRST | ML_SLICE_LAST};
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;
   if (!slice_vpls) {
     for (SampleChunks chunks(spp, lavapipe); !chunks.done();) {
-      push.frame.sample_offset = uint32_t(chunks.offset());
-      push.frame.spp = uint32_t(chunks.size());
+      push.view.sample_offset = uint32_t(chunks.offset());
+      push.view.spp = uint32_t(chunks.size());
       double ms = pipeline.dispatch(buffers, &push, groups_x, groups_y);
       out.gpu_ms += ms;
       ++out.dispatches;
@@ -99,9 +99,9 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
     // retried at half its size.
     uint32_t slice_size = 32;
     std::vector<glsl::ManyLightTexel> saved(pixels);
-    push.frame.spp = 1;
+    push.view.spp = 1;
     for (int sample = 0; sample < spp; ++sample) {
-      push.frame.sample_offset = uint32_t(sample);
+      push.view.sample_offset = uint32_t(sample);
       for (uint32_t first = 0; first < vpl_count;) {
         uint32_t end = first + std::min(slice_size, vpl_count - first);
         push.vpl_first = first;

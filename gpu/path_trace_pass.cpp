@@ -4,7 +4,7 @@
 
 #include "core/util/error.h"
 #include "gpu/compute_pipeline.h"
-#include "gpu/frame_params.h"
+#include "gpu/view_params.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/sample_chunks.h"
 #include "core/pt/path_trace_layout.h"
@@ -48,7 +48,7 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   buffers.push_back(&texels);
 
   glsl::PathTraceParams push{};
-  push.frame = frame_params(camera, width, height, seed);
+  push.view = view_params(camera, width, height, seed);
   push.ray_epsilon = ray_epsilon;
   push.max_bounces = params.max_bounces;
   push.rr_min_bounces = params.rr_min_bounces;
@@ -59,8 +59,8 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   GpuPathTraceResult out;
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;
   for (SampleChunks chunks(spp, context.info().type == "cpu"); !chunks.done();) {
-    push.frame.sample_offset = uint32_t(chunks.offset());
-    push.frame.spp = uint32_t(chunks.size());
+    push.view.sample_offset = uint32_t(chunks.offset());
+    push.view.spp = uint32_t(chunks.size());
     double ms = pipeline->dispatch(buffers, &push, groups_x, groups_y);
     out.gpu_ms += ms;
     ++out.dispatches;

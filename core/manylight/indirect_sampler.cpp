@@ -2,9 +2,9 @@
 
 namespace sst {
 
-void IndirectSampler::prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters) {
-  begin_sampler_inputs(method_id(), frame.vpls, frame.clamp_distance, frame.context.accel, inputs_);
-  build(frame, timer, counters, inputs_);
+void IndirectSampler::prepare(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters) {
+  begin_sampler_inputs(method_id(), lighting.vpls, lighting.clamp_distance, lighting.context.accel, inputs_);
+  build(lighting, timer, counters, inputs_);
 }
 
 }  // namespace sst

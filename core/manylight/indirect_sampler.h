@@ -31,8 +31,9 @@ using LightTreeBuildFn = std::function<LightTree(const VplSet& vpls, const Light
 struct Surface;
 ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_only, int x, int y);
 
-// The frame-wide inputs of sampling.
-struct ManyLightFrame {
+// What a frame is lit by, for a sampler to prepare from: the VPLs, their clamp, and the render
+// context (scene, camera, options) they light.
+struct VplLighting {
   const RenderContext& context;
   const VplSet& vpls;
   float clamp_distance;  // singularity clamp c (vpl_clamp.h)
@@ -43,7 +44,7 @@ class IndirectSampler {
   virtual ~IndirectSampler() = default;
   // Per-frame preparation: the method's tree and cuts, then inputs(); `counters` receives
   // method-specific counters.
-  void prepare(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters);
+  void prepare(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters);
   // One indirect sample at `point`: the method's estimate_<name>(inputs(), point, sampler), the
   // function the Vulkan backend's estimate switch calls for SamplerParams.method too
   // (gpu/shaders/indirect_sampler.glsl); thread-safe. Call after prepare().
@@ -60,7 +61,7 @@ class IndirectSampler {
   virtual uint32_t method_id() const = 0;
   // The method's own preparation (tree, cuts) and its part of `inputs`, which holds the
   // frame-wide part already.
-  virtual void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {}
+  virtual void build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {}
 
  private:
   SamplerInputs inputs_;

@@ -60,7 +60,7 @@ struct CutGuide {
 struct SamplerParams {
   uint method;           // ML_METHOD_<name>
   uint vpl_count;        // ml_vpls[] length
-  float clamp_distance;  // ManyLightFrame::clamp_distance
+  float clamp_distance;  // VplLighting::clamp_distance
   uint tree_root;        // LightTree::root (tree samplers); kNoNode for an empty tree
   uint tree_first_leaf;  // LightTree::first_leaf
   uint tree_node_count;  // ml_nodes[] length; 0: empty tree

@@ -49,9 +49,9 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
                          &vpl_stats);
   });
   if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
-  ManyLightFrame mlf{ctx, vpls, vpl_stats.clamp_distance};
+  VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
-  sampler_->prepare(mlf, timer, frame.method_counters);
+  sampler_->prepare(lighting, timer, frame.method_counters);
 
   PathTracerParams direct_only;
   direct_only.max_bounces = 0;

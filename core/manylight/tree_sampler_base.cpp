@@ -4,14 +4,14 @@ namespace sst {
 
 TreeSamplerBase::TreeSamplerBase(LightTreeParams params) : tree_params_(std::move(params)) { validate(tree_params_); }
 
-void TreeSamplerBase::build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters,
+void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters,
                             SamplerInputs& inputs) {
   LightTreeBuildStats stats;
-  const Bounds3& scene_bounds = frame.context.scene.bounds;
+  const Bounds3& scene_bounds = lighting.context.scene.bounds;
   std::string built_on = "cpu";
   tree_ = timer.time("tree_build", [&] {
-    return builder_ ? builder_(frame.vpls, tree_params_, &scene_bounds, &stats, &built_on)
-                    : build_light_tree(frame.vpls, tree_params_, &scene_bounds, &stats);
+    return builder_ ? builder_(lighting.vpls, tree_params_, &scene_bounds, &stats, &built_on)
+                    : build_light_tree(lighting.vpls, tree_params_, &scene_bounds, &stats);
   });
   counters["tree"] = {{"kind", tree_.kind},
                       {"built_on", built_on},

@@ -15,7 +15,7 @@ class TreeSamplerBase : public IndirectSampler {
 
  protected:
   // Builds the tree and sets its part of `inputs`; samplers with more to build call it first.
-  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
+  void build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
   LightTreeParams tree_params_;
   LightTree tree_;

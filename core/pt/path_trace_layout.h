@@ -19,7 +19,7 @@ using glm::vec3;
 // Push constants of pt.comp: the frame (camera, seed, this dispatch's sample range), the ray
 // offset of core/accel/ray_offset.h (EmbreeAccel's scene_ray_epsilon) and PathTracerParams.
 struct PathTraceParams {
-  FrameParams frame;
+  ViewParams view;
   float ray_epsilon;
   int max_bounces;
   int rr_min_bounces;

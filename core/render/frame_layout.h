@@ -1,5 +1,5 @@
 // Per-frame data crossing the host/GPU boundary, defined once for C++ (namespace sst::glsl,
-// static_asserts) and GLSL: the camera and frame parameters (push constants, filled from
+// static_asserts) and GLSL: the view a dispatch renders (ViewParams, push constants filled from
 // core/render/camera.h's PinholeCamera basis so that both backends generate the same rays) and
 // the per-pixel outputs of the first-hit (G-buffer) and many-light sampling passes.
 #ifndef SST_CORE_RENDER_FRAME_LAYOUT_H
@@ -14,7 +14,8 @@ using uint = uint32_t;
 using glm::vec3;
 #endif
 
-struct FrameParams {
+// What one dispatch renders: the camera, the image size, the seed and its range of sample indices.
+struct ViewParams {
   vec3 eye;
   float tan_half_y;  // tan(yfov / 2)
   vec3 right;        // unit camera basis, right-handed: right x up = -forward
@@ -69,7 +70,7 @@ struct ManyLightTexel {
 #define ML_SLICE_FIRST 1u
 #define ML_SLICE_LAST 2u
 struct ManyLightPush {
-  FrameParams frame;
+  ViewParams view;
   float scene_epsilon;  // SCENE_RAY_EPSILON of core/accel/ray_offset.h
   uint diffuse_only;
   uint vpl_first;       // the VPLs of this dispatch's slice (0, ~0u: all)
@@ -99,9 +100,9 @@ static_assert(offsetof(ManyLightTexel, albedo) == 48 && offsetof(ManyLightTexel,
 static_assert(offsetof(ManyLightTexel, primary_rays) == 80);
 static_assert(sizeof(GBufferTexel) == 48);
 static_assert(offsetof(GBufferTexel, normal) == 16 && offsetof(GBufferTexel, emission) == 32);
-static_assert(sizeof(FrameParams) == 80);
-static_assert(offsetof(FrameParams, right) == 16 && offsetof(FrameParams, up) == 32);
-static_assert(offsetof(FrameParams, forward) == 48 && offsetof(FrameParams, seed) == 64);
+static_assert(sizeof(ViewParams) == 80);
+static_assert(offsetof(ViewParams, right) == 16 && offsetof(ViewParams, up) == 32);
+static_assert(offsetof(ViewParams, forward) == 48 && offsetof(ViewParams, seed) == 64);
 }  // namespace sst::glsl
 #endif
 

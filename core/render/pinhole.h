@@ -7,7 +7,7 @@
 
 #ifdef __cplusplus
 namespace sst {
-using glsl::FrameParams;
+using glsl::ViewParams;
 }
 #endif
 
@@ -23,10 +23,10 @@ SST_FUNC vec3 pinhole_direction(vec3 forward, vec3 right, vec3 up, float tan_hal
   return normalize3(d);
 }
 
-// The same with the camera of a frame's parameters.
-SST_FUNC vec3 camera_direction(SST_IN(FrameParams) frame, float px, float py) {
-  return pinhole_direction(frame.forward, frame.right, frame.up, frame.tan_half_y, frame.aspect, float(frame.width),
-                           float(frame.height), px, py);
+// The same with the camera of a dispatch's view parameters.
+SST_FUNC vec3 camera_direction(SST_IN(ViewParams) view, float px, float py) {
+  return pinhole_direction(view.forward, view.right, view.up, view.tan_half_y, view.aspect, float(view.width),
+                           float(view.height), px, py);
 }
 
 SST_END

@@ -12,7 +12,7 @@ SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
 layout(std430, binding = 7) writeonly buffer GBuffer { GBufferTexel gbuffer[]; };
-layout(push_constant) uniform Push { FrameParams frame; };
+layout(push_constant) uniform Push { ViewParams view; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #include "core/accel/bvh_traverse.h"
@@ -24,17 +24,17 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
-  if (xy.x >= frame.width || xy.y >= frame.height) return;
-  uint pixel = xy.y * frame.width + xy.x;
+  if (xy.x >= view.width || xy.y >= view.height) return;
+  uint pixel = xy.y * view.width + xy.x;
   vec3 albedo = vec3(0.0), normal = vec3(0.0), emission = vec3(0.0);
   float depth = 0.0;
   uint hits = 0u;
   const float infinity = uintBitsToFloat(0x7F800000u);
-  for (uint i = 0u; i < frame.spp; ++i) {
-    PixelSampler ps = pixel_sampler(frame.seed, pixel, frame.sample_offset + i);
+  for (uint i = 0u; i < view.spp; ++i) {
+    PixelSampler ps = pixel_sampler(view.seed, pixel, view.sample_offset + i);
     vec2 jitter = pixel_sampler_get2d(ps);
-    vec3 dir = camera_direction(frame, float(xy.x) + jitter.x, float(xy.y) + jitter.y);
-    BvhHit hit = bvh_intersect(frame.eye, dir, 0.0, infinity);
+    vec3 dir = camera_direction(view, float(xy.x) + jitter.x, float(xy.y) + jitter.y);
+    BvhHit hit = bvh_intersect(view.eye, dir, 0.0, infinity);
     if (hit.triangle >= BVH_STACK_OVERFLOW) continue;  // a miss (or, never, an overflow)
     Surface s = make_surface(hit.triangle, vec2(hit.u, hit.v), dir);
     albedo += s.base_color;
@@ -43,7 +43,7 @@ void main() {
     emission += s.emission;
     ++hits;
   }
-  float inv = 1.0 / float(frame.spp);
+  float inv = 1.0 / float(view.spp);
   GBufferTexel texel;
   texel.albedo = albedo * inv;
   texel.depth = depth * inv;

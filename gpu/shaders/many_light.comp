@@ -75,21 +75,21 @@ ManyLightTexel empty_texel() {
 
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
-  if (xy.x >= push.frame.width || xy.y >= push.frame.height) return;
-  uint pixel = xy.y * push.frame.width + xy.x;
+  if (xy.x >= push.view.width || xy.y >= push.view.height) return;
+  uint pixel = xy.y * push.view.width + xy.x;
   bool first_slice = (push.slice_flags & ML_SLICE_FIRST) != 0u;
   bool last_slice = (push.slice_flags & ML_SLICE_LAST) != 0u;
   ManyLightTexel acc = empty_texel();
-  if (push.frame.sample_offset != 0u || !first_slice) acc = texels[pixel];
-  for (uint k = 0u; k < push.frame.spp; ++k) {
-    PixelSampler ps = pixel_sampler(push.frame.seed, pixel, push.frame.sample_offset + k);
+  if (push.view.sample_offset != 0u || !first_slice) acc = texels[pixel];
+  for (uint k = 0u; k < push.view.spp; ++k) {
+    PixelSampler ps = pixel_sampler(push.view.seed, pixel, push.view.sample_offset + k);
     vec2 jitter = pixel_sampler_get2d(ps);
     precise float px = float(xy.x) + jitter.x, py = float(xy.y) + jitter.y;
-    vec3 dir = camera_direction(push.frame, px, py);
+    vec3 dir = camera_direction(push.view, px, py);
     PathCounters counters = path_counters();
     Surface hit;
     bool has_hit;
-    PathSample d = trace_path(push.frame.eye, dir, 0, 0, push.diffuse_only != 0u, ps, counters, hit, has_hit);
+    PathSample d = trace_path(push.view.eye, dir, 0, 0, push.diffuse_only != 0u, ps, counters, hit, has_hit);
     // Every slice retraces the camera ray (the same bits each time); the first one counts it.
     if (first_slice) {
       acc.primary_rays += counters.primary_rays;

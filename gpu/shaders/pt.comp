@@ -47,20 +47,22 @@ PathTraceTexel empty_texel() {
 
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
-  FrameParams frame = params.frame;
-  if (xy.x >= frame.width || xy.y >= frame.height) return;
-  uint pixel = xy.y * frame.width + xy.x;
+  // One local copy of the view (its name too) keeps glslang's precise propagation small (README,
+  // "One source for both backends").
+  ViewParams pixel_view = params.view;
+  if (xy.x >= pixel_view.width || xy.y >= pixel_view.height) return;
+  uint pixel = xy.y * pixel_view.width + xy.x;
   PathTraceTexel acc = empty_texel();
-  if (frame.sample_offset != 0u) acc = texels[pixel];
-  for (uint i = 0u; i < frame.spp; ++i) {
-    PixelSampler ps = pixel_sampler(frame.seed, pixel, frame.sample_offset + i);
+  if (pixel_view.sample_offset != 0u) acc = texels[pixel];
+  for (uint i = 0u; i < pixel_view.spp; ++i) {
+    PixelSampler ps = pixel_sampler(pixel_view.seed, pixel, pixel_view.sample_offset + i);
     vec2 jitter = pixel_sampler_get2d(ps);
     precise float px = float(xy.x) + jitter.x, py = float(xy.y) + jitter.y;
-    vec3 dir = camera_direction(frame, px, py);
+    vec3 dir = camera_direction(pixel_view, px, py);
     PathCounters counters = path_counters();
     Surface first_hit;
     bool hit;
-    PathSample p = trace_path(frame.eye, dir, params.max_bounces, params.rr_min_bounces, params.diffuse_only != 0u,
+    PathSample p = trace_path(pixel_view.eye, dir, params.max_bounces, params.rr_min_bounces, params.diffuse_only != 0u,
                               ps, counters, first_hit, hit);
     acc.primary_rays += counters.primary_rays;
     acc.shadow_rays += counters.shadow_rays;

@@ -132,7 +132,7 @@ struct TestFrame {
       }
   }
 
-  ManyLightFrame frame() const { return {*context, vpls, clamp_distance}; }
+  VplLighting frame() const { return {*context, vpls, clamp_distance}; }
 };
 
 const TestFrame& test_frame(bool diffuse_only, int vpl_count) {
@@ -244,7 +244,7 @@ struct Agreement {
   double nodes_per_point = 0.0, rays_per_point = 0.0;
 };
 
-Agreement compare_with_cpu(const TestFrame& f, const IndirectSampler& sampler, const ManyLightFrame& mlf,
+Agreement compare_with_cpu(const TestFrame& f, const IndirectSampler& sampler, const VplLighting& lighting,
                            const std::vector<IndirectTestResult>& gpu) {
   Agreement a;
   a.points = f.points.size();
@@ -285,14 +285,14 @@ TEST_P(GpuIndirectSampler, EqualsTheCpuEstimatePerShadingPoint) {
   SKIP_WITHOUT_GPU("indirect_sampler_test");
   const Case& c = GetParam();
   const TestFrame& f = test_frame(c.diffuse_only, c.vpls);
-  ManyLightFrame mlf = f.frame();
+  VplLighting lighting = f.frame();
   // The method owns its sampler; its VPL parameters go unused (the frame brings the VPLs).
   std::unique_ptr<Method> method = create_method(c.method, c.params);
   IndirectSampler& sampler = dynamic_cast<ManyLightMethod&>(*method).sampler();
   StageTimer timer;
   nlohmann::json counters;
-  sampler.prepare(mlf, timer, counters);
-  Agreement a = compare_with_cpu(f, sampler, mlf, run_gpu(f, sampler.inputs()));
+  sampler.prepare(lighting, timer, counters);
+  Agreement a = compare_with_cpu(f, sampler, lighting, run_gpu(f, sampler.inputs()));
   std::printf(
       "%-20s %zu points (%zu lit), %.2f nodes and %.2f shadow rays per point: differ in sets %zu, nodes %zu, "
       "shadow rays %zu, value %zu (others within %.1e relative); RMSE / mean %.2e\n",

@@ -9,7 +9,7 @@ MethodInfo hybrid_method_info() {
                                    "shallow light cuts over an SST (hybrid thesis, ch. 5): per-block cuts blended "
                                    "stochastically between neighbours, mock cuts, substitutes; biased",
                                    [](const HybridParams& p) -> std::unique_ptr<Method> {
-                                     return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
+                                     return std::make_unique<ManyLightMethod>(p.tree_method.vpl, params_to_json(p),
                                                                               std::make_unique<HybridSampler>(p));
                                    });
 }

@@ -12,9 +12,9 @@
 namespace sst {
 
 void validate(const HybridParams& p) {
-  validate(p.common.tree);
-  if (p.common.tree.tree != "perfect")
-    throw Error("hybrid: parameter 'tree' must be 'perfect' (mock cuts use its heap levels), got '" + p.common.tree.tree + "'");
+  validate(p.tree_method.tree);
+  if (p.tree_method.tree.tree != "perfect")
+    throw Error("hybrid: parameter 'tree' must be 'perfect' (mock cuts use its heap levels), got '" + p.tree_method.tree.tree + "'");
   if (p.block_size < 1) throw Error("hybrid: parameter 'block_size' must be >= 1");
   if (p.cut_size < 1 || p.cut_size > 32) throw Error("hybrid: parameter 'cut_size' must be in 1..32");
   if (!(p.n_min >= -1.0f && p.n_min <= 1.0f)) throw Error("hybrid: parameter 'n_min' must be in [-1, 1]");
@@ -34,14 +34,14 @@ uint32_t first_leaf_below(const LightTree& tree, uint32_t node) {
 
 }  // namespace
 
-HybridSampler::HybridSampler(const HybridParams& params) : TreeSamplerBase(params.common.tree), params_(params) { validate(params_); }
+HybridSampler::HybridSampler(const HybridParams& params) : TreeSamplerBase(params.tree_method.tree), params_(params) { validate(params_); }
 
-void HybridSampler::build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
-  const RenderContext& ctx = frame.context;
-  TreeSamplerBase::build(frame, timer, counters, inputs);
+void HybridSampler::build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
+  const RenderContext& ctx = lighting.context;
+  TreeSamplerBase::build(lighting, timer, counters, inputs);
   const uint32_t n = uint32_t(params_.cut_size);
   d_max_abs_ = params_.d_max * ctx.scene.bounds.diagonal();
-  const float clamp = frame.clamp_distance;
+  const float clamp = lighting.clamp_distance;
   auto centre = [](const BlockRect& r) { return glm::ivec2(r.x0 + r.w / 2, r.y0 + r.h / 2); };
   auto error = [&](const LightNode& node, const GBufferSample& g) {
     return g.valid ? hybrid_weight(node, g.p, g.n, clamp) : luminance(node.intensity);

@@ -33,7 +33,7 @@
 namespace sst {
 
 struct HybridParams {
-  TreeMethodParams common;
+  TreeMethodParams tree_method;
   int block_size = 8;
   int cut_size = 8;
   // The thesis gives no values for n_min and d_max; 0.9 (~25 degrees) and 5% of the scene are ours.
@@ -41,13 +41,13 @@ struct HybridParams {
   float d_max = 0.05f;
 
   HybridParams() {
-    common.tree.tree = "perfect";
-    common.tree.v_min = 0.7f;       // thesis eq. 5.6
-    common.tree.sigma_max = 0.015f;  // thesis 0.3 in its scene units (light_tree.h)
+    tree_method.tree.tree = "perfect";
+    tree_method.tree.v_min = 0.7f;       // thesis eq. 5.6
+    tree_method.tree.sigma_max = 0.015f;  // thesis 0.3 in its scene units (light_tree.h)
   }
   template <class V>
   void visit(V&& v) {
-    common.visit(v);
+    tree_method.visit(v);
     v("block_size", block_size, "k: pixels per side of a block; one shallow light cut per block");
     v("cut_size", cut_size, "n: nodes per cut (1..32) = traversals per indirect sample, the per-pixel budget");
     v("n_min", n_min,
@@ -71,7 +71,7 @@ class HybridSampler final : public TreeSamplerBase {
 
  protected:
   uint32_t method_id() const override { return ML_METHOD_hybrid; }
-  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
+  void build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:
   HybridParams params_;

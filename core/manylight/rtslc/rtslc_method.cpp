@@ -9,7 +9,7 @@ MethodInfo rtslc_method_info() {
                                   "real-time stochastic lightcuts (Lin & Yuksel 2020) on the perfect tree: per-block "
                                   "cuts, one walk per cut node, min/max-distance weights, interleaving",
                                   [](const RtslcParams& p) -> std::unique_ptr<Method> {
-                                    return std::make_unique<ManyLightMethod>(p.common.vpl, params_to_json(p),
+                                    return std::make_unique<ManyLightMethod>(p.tree_method.vpl, params_to_json(p),
                                                                              std::make_unique<RtslcSampler>(p));
                                   });
 }

@@ -15,9 +15,9 @@
 namespace sst {
 
 void validate(const RtslcParams& p) {
-  validate(p.common.tree);
-  if (p.common.tree.tree != "perfect")
-    throw Error("rtslc: parameter 'tree' must be 'perfect' (RTSLC's heap-layout tree), got '" + p.common.tree.tree + "'");
+  validate(p.tree_method.tree);
+  if (p.tree_method.tree.tree != "perfect")
+    throw Error("rtslc: parameter 'tree' must be 'perfect' (RTSLC's heap-layout tree), got '" + p.tree_method.tree.tree + "'");
   if (p.block_size < 1) throw Error("rtslc: parameter 'block_size' must be >= 1");
   if (p.cut_size < 1 || p.cut_size > 32) throw Error("rtslc: parameter 'cut_size' must be in 1..32");
   if (p.interleave != 1 && p.interleave != 2 && p.interleave != 4)
@@ -61,14 +61,14 @@ double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t lea
   return i == from ? prob : 0.0;
 }
 
-RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.common.tree), params_(params) {
+RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.tree_method.tree), params_(params) {
   validate(params_);
   weights_ = parse_rtslc_weights(params_.weights);
 }
 
-void RtslcSampler::build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
-  const RenderContext& ctx = frame.context;
-  TreeSamplerBase::build(frame, timer, counters, inputs);
+void RtslcSampler::build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
+  const RenderContext& ctx = lighting.context;
+  TreeSamplerBase::build(lighting, timer, counters, inputs);
   // RTSLC bounds the distance below at 0.001 of the scene size so that a node touching the
   // pivot does not take every split.
   const float min_distance = 0.001f * ctx.scene.bounds.diagonal();

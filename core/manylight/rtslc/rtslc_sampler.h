@@ -21,16 +21,16 @@
 namespace sst {
 
 struct RtslcParams {
-  TreeMethodParams common;
+  TreeMethodParams tree_method;
   int block_size = 8;
   int cut_size = 8;
   int interleave = 1;
   std::string weights = "rtslc";
 
-  RtslcParams() { common.tree.tree = "perfect"; }  // the paper's tree; the only one allowed
+  RtslcParams() { tree_method.tree.tree = "perfect"; }  // the paper's tree; the only one allowed
   template <class V>
   void visit(V&& v) {
-    common.visit(v);
+    tree_method.visit(v);
     v("block_size", block_size, "k: pixels per side of a block; one light cut per block, built at a random pixel of it");
     v("cut_size", cut_size, "M: nodes per light cut (1..32); one traversal from each per indirect sample");
     v("interleave", interleave,
@@ -71,7 +71,7 @@ class RtslcSampler final : public TreeSamplerBase {
 
  protected:
   uint32_t method_id() const override { return ML_METHOD_rtslc; }
-  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
+  void build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:
   RtslcParams params_;

@@ -10,7 +10,7 @@ MethodInfo sst_method_info() {
                                       "and samples its Gaussian substitute; diffuse and glossy lobes; biased",
                                       [](const SstMethodParams& p) -> std::unique_ptr<Method> {
                                         return std::make_unique<ManyLightMethod>(
-                                            p.base.vpl, params_to_json(p), std::make_unique<SstSampler>(p.base.tree, p.sst));
+                                            p.tree_method.vpl, params_to_json(p), std::make_unique<SstSampler>(p.tree_method.tree, p.sst));
                                       });
 }
 

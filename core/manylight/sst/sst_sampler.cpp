@@ -14,8 +14,8 @@ StopRule sst_stop_rule(SstLobe lobe, bool substitutes) {
   return [](const LightNode& n) { return n.is_leaf() || n.suitable(); };
 }
 
-void SstSampler::build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
-  TreeSamplerBase::build(frame, timer, counters, inputs);
+void SstSampler::build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
+  TreeSamplerBase::build(lighting, timer, counters, inputs);
   inputs.params.sst_eps = sst_.distance_floor * tree_.length_scale;
   inputs.params.sst_substitutes = sst_.substitutes ? 1u : 0u;
 }

@@ -57,11 +57,11 @@ struct SstParams {
 };
 
 struct SstMethodParams {
-  TreeMethodParams base;
+  TreeMethodParams tree_method;
   SstParams sst;
   template <class V>
   void visit(V&& v) {
-    base.visit(v);
+    tree_method.visit(v);
     sst.visit(v);
   }
 };
@@ -83,7 +83,7 @@ class SstSampler final : public TreeSamplerBase {
 
  protected:
   uint32_t method_id() const override { return ML_METHOD_sst; }
-  void build(const ManyLightFrame& frame, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
+  void build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:
   SstParams sst_;

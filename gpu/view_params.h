@@ -1,4 +1,4 @@
-// The push constants every rendering shader starts with (core/render/frame_layout.h FrameParams),
+// The push constants every rendering shader starts with (core/render/frame_layout.h ViewParams),
 // from the CPU's camera, so that both backends generate the same rays.
 #pragma once
 #include <cstdint>
@@ -9,9 +9,9 @@
 namespace sst::gpu {
 
 // sample_offset 0 and spp 0: each dispatch sets its own range of sample indices.
-inline glsl::FrameParams frame_params(const PinholeCamera& camera, int width, int height, uint32_t seed) {
+inline glsl::ViewParams view_params(const PinholeCamera& camera, int width, int height, uint32_t seed) {
   PinholeCamera::Basis b = camera.basis();
-  glsl::FrameParams p{};
+  glsl::ViewParams p{};
   p.eye = b.eye;
   p.tan_half_y = b.tan_half_y;
   p.right = b.right;

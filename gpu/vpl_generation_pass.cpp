@@ -12,42 +12,17 @@
 #include "core/accel/embree_accel.h"
 #include "core/util/error.h"
 #include "core/vpl/vpl_clamp.h"
+#include "core/vpl/light_path_layout.h"
 #include "gpu/compute_pipeline.h"
 
 namespace sst::gpu {
 namespace {
 
-// std430 twins of gpu/shaders/vpl_generation.comp's VplSlot and push constants.
-struct VplSlot {
-  vec3 position;
-  float pad0;
-  vec3 normal;
-  float pad1;
-  vec3 intensity;
-  float pad2;
-};
-static_assert(sizeof(VplSlot) == 48);
-static_assert(offsetof(VplSlot, normal) == 16);
-static_assert(offsetof(VplSlot, intensity) == 32);
-
-struct VplPush {
-  uint32_t seed;
-  uint32_t first_path;
-  uint32_t path_count;
-  uint32_t max_bounces;
-  uint32_t min_bounces;
-  uint32_t diffuse_only;
-  float ray_epsilon;
-  uint32_t pad;
-};
-static_assert(sizeof(VplPush) == 32);
-
-// Per path: (deposits, rays); deposits == kPathOverflow: the BVH stack overflowed.
+// Per path: (deposits, rays); deposits == kLightPathOverflow: the BVH stack overflowed.
 struct PathRecord {
   uint32_t deposits;
   uint32_t rays;
 };
-constexpr uint32_t kPathOverflow = 0xFFFFFFFFu;
 
 constexpr uint32_t kGroupSize = 64;           // local_size_x of the shader
 constexpr uint64_t kMaxGroups = 65535;        // the smallest maxComputeWorkGroupCount[0] Vulkan allows
@@ -79,7 +54,7 @@ void gather(std::span<const PathRecord> records, const VplSlot* slots, int max_b
             Gathered& g) {
   for (size_t i = 0; i < records.size(); ++i) {
     const PathRecord& r = records[i];
-    if (r.deposits == kPathOverflow)
+    if (r.deposits == kLightPathOverflow)
       throw Error("VPL generation on the GPU: BVH traversal stack overflow on light path " +
                   std::to_string(g.traced + i));
     g.rays += r.rays;
@@ -146,10 +121,10 @@ VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene
     const size_t slots_binding = buffers.size();
     buffers.resize(slots_binding + 2);  // slots and path records, bound per batch
     for (const GpuBuffer* b : lights.buffers()) buffers.push_back(b);
-    ComputePipeline pipeline(context, "vpl_generation", uint32_t(buffers.size()), sizeof(VplPush));
+    ComputePipeline pipeline(context, "vpl_generation", uint32_t(buffers.size()), sizeof(VplGenerationPush));
     uint64_t capacity = batch_capacity(context, max_bounces);
     if (max_batch_paths > 0) capacity = std::min(capacity, max_batch_paths);
-    VplPush push{seed, 0, 0, uint32_t(max_bounces), uint32_t(params.vpl_min_bounces), diffuse_only ? 1u : 0u,
+    VplGenerationPush push{seed, 0, 0, uint32_t(max_bounces), uint32_t(params.vpl_min_bounces), diffuse_only ? 1u : 0u,
                  scene_ray_epsilon(scene), 0};
     std::vector<PathRecord> records;
     while (g.vpls.size() < target && g.traced < max_paths) {

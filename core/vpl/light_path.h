@@ -16,16 +16,13 @@
 #include "core/accel/ray_offset.h"
 #include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
+#include "core/vpl/light_path_layout.h"
 
 #if !defined(VPL_CTX_PARAM) || !defined(VPL_CTX) || !defined(VPL_DEPOSIT)
 #error "define the VPL_* hooks before including core/vpl/light_path.h"
 #endif
 
 SST_BEGIN
-
-SST_CONSTANT uint kVplStream = 0x56504C31u;  // "VPL1"
-// trace_light_path's deposit count for a path whose traversal gave up (a BVH stack overflow).
-SST_CONSTANT uint kLightPathOverflow = 0xFFFFFFFFu;
 
 // Two draws as one 2D sample, the first draw in y: the order the VPL sets of the results were
 // drawn in (once `vec2(next, next)`, which GCC evaluates right to left).

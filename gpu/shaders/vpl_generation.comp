@@ -9,20 +9,11 @@
 //   8 uvec2 paths[]: path i's (deposits, closest-hit rays); deposits = kLightPathOverflow when
 //     the BVH stack overflowed (never for a tree build_flat_bvh returned; the host throws),
 //   9.. the lights (LIGHT_BUFFERS).
-// VplSlot and the push constants are mirrored in gpu/vpl_generation_pass.cpp (static_asserts).
+// VplSlot and the push constants: core/vpl/light_path_layout.h.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
-
-// One deposit: position, normal (unit, on the side the light came from), intensity.
-struct VplSlot {
-  vec3 position;
-  float pad0;
-  vec3 normal;
-  float pad1;
-  vec3 intensity;
-  float pad2;
-};
+#include "core/vpl/light_path_layout.h"
 
 SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
@@ -31,16 +22,7 @@ layout(std430, binding = 7) writeonly buffer Slots { VplSlot slots[]; };
 layout(std430, binding = 8) writeonly buffer Paths { uvec2 paths[]; };
 LIGHT_BUFFERS(9)
 
-layout(push_constant) uniform Push {
-  uint seed;
-  uint first_path;   // path index of invocation 0
-  uint path_count;   // invocations that trace a path
-  uint max_bounces;  // VplParams::vpl_max_bounces (slots per path)
-  uint min_bounces;  // VplParams::vpl_min_bounces
-  uint diffuse_only;
-  float ray_epsilon;  // scene_ray_epsilon(scene)
-  uint pad;
-} params;
+layout(push_constant) uniform Push { VplGenerationPush params; };
 
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]

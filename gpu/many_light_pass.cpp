@@ -107,7 +107,9 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
         push.vpl_first = first;
         push.vpl_end = end;
         push.slice_flags = (first == 0 ? ML_SLICE_FIRST : 0u) | (end == vpl_count ? ML_SLICE_LAST : 0u);
-        if (sample > 0 || first > 0) texels.download(std::span<glsl::ManyLightTexel>(saved));
+        // The frame's first slice overwrites the texels; every later one adds to them.
+        const bool adds_to_texels = sample > 0 || first > 0;
+        if (adds_to_texels) texels.download(std::span<glsl::ManyLightTexel>(saved));
         words[ML_DISPATCH_BUDGET_HITS] = 0;
         words[ML_DISPATCH_MAX_ITERATIONS] = 0;
         dispatch_words.upload(std::span<const uint32_t>(words));
@@ -119,7 +121,7 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
           if (end - first == 1)
             throw Error("one VPL's shadow rays need more shader loop iterations than lavapipe runs (65535 per "
                         "invocation): use a GPU, or --backend cpu");
-          if (sample > 0 || first > 0) texels.upload(std::span<const glsl::ManyLightTexel>(saved));
+          if (adds_to_texels) texels.upload(std::span<const glsl::ManyLightTexel>(saved));
           slice_size = std::max(1u, (end - first) / 2);
           continue;
         }

@@ -3,7 +3,7 @@
 // (core/accel/flat_bvh.h): the same traversal code, so the CPU and GPU images can be compared bit
 // for bit, without Embree's different barycentrics and edge decisions.
 // Offsets that keep secondary rays off their own surface are relative to the scene size
-// (`ray_epsilon()`, ray_offset.h), never absolute, so millimetre and kilometre scenes behave the same.
+// (`scene_epsilon()`, ray_offset.h), never absolute, so millimetre and kilometre scenes behave the same.
 #pragma once
 #include <embree3/rtcore.h>
 
@@ -53,9 +53,6 @@ class EmbreeAccel {
 
   // The scene-relative part of every ray offset (scene_ray_epsilon).
   float scene_epsilon() const { return epsilon_; }
-  // Offset along the geometric normal for spawning rays from a surface point p (ray_offset.h).
-  float ray_epsilon(vec3 p) const { return ray_offset_distance(epsilon_, p); }
-  vec3 offset_point(vec3 p, vec3 ng_toward) const { return offset_ray_origin(epsilon_, p, ng_toward); }
   // The shadow ray between surface point p (geometric normal ng_p, on the side of y) and y
   // (shadow_ray_segment, ray_offset.h; ng_y = 0 for a point light).
   Ray shadow_ray(vec3 p, vec3 ng_p, vec3 y, vec3 ng_y) const {

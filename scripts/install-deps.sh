@@ -13,6 +13,8 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools
   parallel
+  libkainjow-mustache-dev  # the report's HTML template engine (core/eval/report)
+  ffmpeg                   # animated previews (MP4) of rendered sequences
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,8 +1,10 @@
-// sst-render: renders one image of a glTF scene (or the built-in Cornell box) with one method and
-// writes the image (EXR with AOV layers, PNG or HDR) and a JSON record of everything in effect.
+// sst-render: renders one image, or a sequence of frames, of a glTF scene (or the built-in Cornell
+// box) with one method and writes the images (EXR with AOV layers, PNG or HDR; out_0007.exr per
+// frame of a sequence, plus an MP4 preview) and a JSON record of everything in effect.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,9 @@
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/render_record.h"
 #include "core/pipeline/renderer.h"
+#include "core/pipeline/sequence.h"
+#include "core/image/video.h"
+#include "core/scene/key_frame_path.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene_search.h"
@@ -25,6 +30,8 @@ struct Args {
   std::vector<std::string> outputs;
   std::string json_path;
   std::vector<std::string> scene_dirs;
+  std::string paths_file;
+  bool no_preview = false;
   int repeat = 1;
   bool quiet = false;
   bool list_methods = false;
@@ -114,6 +121,95 @@ sst::Scene load_scene(const Args& args) {
   return sst::load_gltf(sst::resolve_scene(args.scene, args.scene_dirs));
 }
 
+// Frame `index` of a sequence's output: out.exr -> out_0007.exr.
+std::string numbered(const std::string& path, int index) {
+  std::filesystem::path p(path);
+  char suffix[16];
+  std::snprintf(suffix, sizeof suffix, "_%04d", index);
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
+}
+
+std::vector<sst::KeyFramePath> load_paths(const Args& args, const sst::Scene& scene) {
+  if (args.paths_file.empty()) return {};
+  nlohmann::json j = sst::read_json_file(args.paths_file);
+  if (j.is_object() && j.contains("paths")) return sst::parse_key_frame_paths(j["paths"], scene, args.paths_file + ": paths");
+  return sst::parse_key_frame_paths(j, scene, args.paths_file);
+}
+
+bool is_sequence(const sst::RenderOptions& o) {
+  return o.frames > 1 || o.temporal || o.denoise != "none" || o.indirect_scale > 1;
+}
+
+// A sequence (or a frame with post-processing): each frame is written as soon as it is finished,
+// with the JSON record rewritten after it, so an interrupted run keeps every finished frame.
+int run_sequence(const Args& args, sst::Scene& scene, const sst::RenderOptions& options,
+                 const nlohmann::json& method_params, const sst::StageTimer& load_timer) {
+  if (args.repeat != 1)
+    throw sst::Error("--repeat times single frames; a sequence's timings are medians over its frames");
+  std::vector<sst::KeyFramePath> paths = load_paths(args, scene);
+  std::vector<std::string> outputs = args.outputs.empty() ? std::vector<std::string>{"render.exr"} : args.outputs;
+  const bool many = options.frames > 1;
+  std::string json_path = args.json_path.empty()
+                              ? std::filesystem::path(outputs.front()).replace_extension(".json").string()
+                              : args.json_path;
+  std::filesystem::path preview_dir;
+  std::string preview = std::filesystem::path(outputs.front()).replace_extension(".mp4").string();
+  if (many && !args.no_preview)
+    preview_dir = std::filesystem::path(outputs.front()).replace_extension(".preview-frames");
+  std::vector<sst::RenderResult> done;
+  nlohmann::json frames = nlohmann::json::array();
+  sst::StageTimer write_timer;
+  sst::render_sequence(scene, paths, options, method_params, args.quiet, [&](sst::SequenceFrame& f) {
+    std::vector<std::string> written;
+    sst::RenderResult& r = f.result;
+    write_timer.time("write", [&] {
+      for (const std::string& path : outputs) {
+        written.push_back(many ? numbered(path, f.index) : path);
+        sst::write_image(written.back(), r.frame.color, r.frame.layers(), r.options.exposure);
+      }
+      if (!preview_dir.empty())
+        sst::write_image(numbered((preview_dir / "frame.png").string(), f.index), r.frame.color, {}, r.options.exposure);
+    });
+    double ms = sst::frame_ms(r);
+    frames.push_back({{"index", f.index},
+                      {"time", f.time},
+                      {"seed", r.options.seed},
+                      {"images", written},
+                      {"frame_ms", ms},
+                      {"timings_ms", sst::stage_statistics({r.timer})},
+                      {"counters", r.frame.counters.to_json(ms)}});
+    // The record needs the counters of each frame, not its images.
+    sst::FrameOutput counters_only;
+    counters_only.counters = r.frame.counters;
+    counters_only.method_counters = r.frame.method_counters;
+    r.frame = std::move(counters_only);
+    done.push_back(std::move(r));
+    nlohmann::json record = sst::make_render_record("sst-render", scene, done, load_timer, write_timer);
+    record.erase("repeat");
+    record["options"]["seed"] = options.seed;
+    record["frames"] = frames;
+    record["outputs"] = {{"images", outputs}, {"json", json_path}};
+    if (!preview_dir.empty()) record["outputs"]["preview"] = preview;
+    sst::write_json_atomic(json_path, record);
+    if (!args.quiet)
+      std::fprintf(stderr, "frame %d (t = %.3f s): %.1f ms -> %s\n", f.index, f.time, ms, written.front().c_str());
+  });
+  if (!preview_dir.empty()) {
+    std::string reason = sst::encode_video((preview_dir / "frame_%04d.png").string(), options.frame_start,
+                                           options.fps, preview);
+    std::error_code ec;
+    std::filesystem::remove_all(preview_dir, ec);
+    if (!reason.empty()) {
+      std::fprintf(stderr, "warning: no preview: %s\n", reason.c_str());
+      nlohmann::json record = sst::read_json_file(json_path);
+      record["outputs"].erase("preview");
+      record["warnings"].push_back("no preview: " + reason);
+      sst::write_json_atomic(json_path, record);
+    }
+  }
+  return 0;
+}
+
 int run(const Args& args, const sst::app::ParamFlags& flags) {
   if (args.list_methods) {
     if (args.markdown)
@@ -136,6 +232,7 @@ int run(const Args& args, const sst::app::ParamFlags& flags) {
   sst::Scene scene = load_timer.time("load", [&] { return load_scene(args); });
   for (const std::string& w : scene.warnings)
     if (!args.quiet) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (is_sequence(options) || !args.paths_file.empty()) return run_sequence(args, scene, options, method_params, load_timer);
 
   std::vector<sst::RenderResult> runs;
   for (int i = 0; i < args.repeat; ++i) runs.push_back(sst::render_frame(scene, options, method_params, args.quiet));
@@ -175,6 +272,9 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", args.outputs, "output image(s): .exr (with AOV layers), .png, .hdr [render.exr]");
   app.add_option("--json", args.json_path, "JSON record path [output path with .json]");
   app.add_option("--scene-dir", args.scene_dirs, "directory to search for scenes (repeatable; also SST_SCENE_PATH)");
+  app.add_option("--paths", args.paths_file,
+                 "JSON file of key-frame paths moving cameras and lights over the sequence (core/scene/key_frame_path.h)");
+  app.add_flag("--no-preview", args.no_preview, "a sequence without its MP4 preview (written with ffmpeg)");
   app.add_option("--repeat", args.repeat, "render this many times; timings are medians with min and max");
   app.add_flag("-q,--quiet", args.quiet, "no progress or summary on stderr");
   CLI::Option* list_methods = app.add_flag("--list-methods", args.list_methods, "list methods and their parameters");

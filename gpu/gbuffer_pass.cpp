@@ -1,6 +1,6 @@
 #include "gpu/gbuffer_pass.h"
 
-#include "gpu/view_params.h"
+#include "core/render/camera.h"
 
 namespace sst::gpu {
 

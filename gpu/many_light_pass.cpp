@@ -4,7 +4,7 @@
 
 #include "core/accel/bvh_layout.h"
 #include "gpu/compute_pipeline.h"
-#include "gpu/view_params.h"
+#include "core/render/camera.h"
 #include "gpu/sample_chunks.h"
 #include "core/render/frame_layout.h"
 

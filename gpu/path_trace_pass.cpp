@@ -4,7 +4,7 @@
 
 #include "core/util/error.h"
 #include "gpu/compute_pipeline.h"
-#include "gpu/view_params.h"
+#include "core/render/camera.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/sample_chunks.h"
 #include "core/pt/path_trace_layout.h"

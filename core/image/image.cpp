@@ -68,12 +68,12 @@ void check_writable(const std::string& path, const Image& rgb, const std::vector
     const Image& im = layer.image;
     if (layer.name.empty() || layer.name.find('.') != std::string::npos || !names.insert(layer.name).second)
       throw Error("cannot write image " + path + ": bad or duplicate layer name '" + layer.name + "'");
-    if (im.width != rgb.width || im.height != rgb.height || (im.channels != 1 && im.channels != 3) ||
+    if (im.width != rgb.width || im.height != rgb.height || (im.channels < 1 || im.channels > 3) ||
         im.data.size() != size_t(im.width) * im.height * im.channels)
       throw Error("cannot write image " + path + ": layer '" + layer.name + "' is " +
                   std::to_string(im.width) + "x" + std::to_string(im.height) + "x" +
                   std::to_string(im.channels) + ", expected " + std::to_string(rgb.width) + "x" +
-                  std::to_string(rgb.height) + " with 1 or 3 channels");
+                  std::to_string(rgb.height) + " with 1, 2 or 3 channels");
   }
 }
 
@@ -84,12 +84,15 @@ struct Pixels {
   const void* data() const { return bytes.empty() ? static_cast<const void*>(floats.data()) : bytes.data(); }
 };
 
-// Channel names: R, G, B, then <layer>.R/G/B or <layer>.Y per layer.
+// Channel names: R, G, B, then per layer <layer>.Y, <layer>.X/Y (a 2D vector, as motion vectors
+// are stored) or <layer>.R/G/B.
 std::vector<std::string> exr_channel_names(const std::vector<Layer>& layers) {
   std::vector<std::string> names{"R", "G", "B"};
   for (const Layer& layer : layers) {
     if (layer.image.channels == 1) {
       names.push_back(layer.name + ".Y");
+    } else if (layer.image.channels == 2) {
+      for (const char* c : {".X", ".Y"}) names.push_back(layer.name + c);
     } else {
       for (const char* c : {".R", ".G", ".B"}) names.push_back(layer.name + c);
     }
@@ -330,9 +333,12 @@ Image read_layer(const std::string& path, const std::string& layer) {
   const OIIO::ImageSpec& spec = in->spec();
   std::vector<int> channels;
   const int r = channel_index(spec, layer + ".R"), g = channel_index(spec, layer + ".G"),
-            b = channel_index(spec, layer + ".B"), y = channel_index(spec, layer + ".Y");
+            b = channel_index(spec, layer + ".B"), x = channel_index(spec, layer + ".X"),
+            y = channel_index(spec, layer + ".Y");
   if (r >= 0 && g >= 0 && b >= 0) {
     channels = {r, g, b};
+  } else if (x >= 0 && y >= 0) {
+    channels = {x, y};
   } else if (y >= 0) {
     channels = {y};
   } else {

@@ -23,8 +23,9 @@ struct Image {
   size_t pixel_count() const { return size_t(width) * height; }
 };
 
-// A named extra layer of an EXR (an AOV): "albedo", "normal", "depth", "direct", "indirect".
-// 1-channel layers are written as <name>.Y, 3-channel ones as <name>.R/G/B.
+// A named extra layer of an EXR (an AOV): "albedo", "normal", "depth", "direct", "indirect",
+// "motion". 1-channel layers are written as <name>.Y, 2-channel ones (vectors) as <name>.X/Y,
+// 3-channel ones as <name>.R/G/B.
 struct Layer {
   std::string name;
   Image image;
@@ -38,8 +39,8 @@ Image from_display(const Image& display);
 float srgb_encode(float linear);
 float srgb_decode(float encoded);
 
-// Writes by extension: .exr (32-bit float, one part: R,G,B plus <layer>.R/G/B or <layer>.Y per
-// layer; layers must match the image's size), .hdr (RGB), .png (8-bit to_display(rgb, exposure),
+// Writes by extension: .exr (32-bit float, one part: R,G,B plus the channels of each layer, see
+// Layer; layers must match the image's size), .hdr (RGB), .png (8-bit to_display(rgb, exposure),
 // rounded to nearest; exposure is used only here). Writes a temporary file beside the target
 // and renames it, so a reader never sees half a file; creates missing parent folders.
 // Non-finite values are written as 0. Throws sst::Error naming the path on failure or on an
@@ -50,8 +51,8 @@ void write_image(const std::string& path, const Image& rgb, const std::vector<La
 // Reads RGB (alpha and extra layers dropped) as linear floats. A PNG/JPEG is display-encoded
 // as stored and is decoded to linear; `was_display` tells the caller which it was.
 Image read_image(const std::string& path, bool* was_display = nullptr);
-// Reads one named layer of an EXR written by write_image (e.g. "indirect"): 3 channels, or 1 for
-// a <layer>.Y layer. Throws if absent, naming the layers the file has.
+// Reads one named layer of an EXR written by write_image (e.g. "indirect"): 3 channels, 2 for a
+// <layer>.X/Y layer, or 1 for a <layer>.Y layer. Throws if absent, naming the layers the file has.
 Image read_layer(const std::string& path, const std::string& layer);
 
 // Like read_image, but returns the values as stored (no sRGB decoding of PNG/JPEG), so that

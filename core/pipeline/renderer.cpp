@@ -5,12 +5,11 @@
 #include <cstdio>
 #include <memory>
 
-#include "core/accel/embree_accel.h"
-#include "core/lights/light_sampler.h"
 #include "core/pipeline/backend.h"
 #include "core/render/camera.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/render_record.h"
+#include "core/util/error.h"
 
 #ifdef SST_HAVE_VULKAN
 #include "gpu/gpu_render_context.h"
@@ -19,6 +18,15 @@
 
 namespace sst {
 
+// The thread count a renderer was asked for, in force while it lives.
+class ThreadLimit {
+ public:
+  explicit ThreadLimit(int threads) : control_(tbb::global_control::max_allowed_parallelism, size_t(threads)) {}
+
+ private:
+  tbb::global_control control_;
+};
+
 double frame_ms(const RenderResult& result) {
   double ms = 0.0;
   for (const auto& [stage, t] : result.timer.stages())
@@ -26,49 +34,96 @@ double frame_ms(const RenderResult& result) {
   return ms;
 }
 
-RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
-                          bool quiet) {
-  RenderResult result;
-  result.options = options;
-  validate(result.options);
+FrameRenderer::FrameRenderer(const RenderOptions& options, const nlohmann::json& method_params, bool quiet)
+    : options_(options), quiet_(quiet) {
+  validate(options_);
   // The backend that runs ("auto" becomes a concrete one; "vulkan" without a device fails with one line).
   std::string backend_note;
-  result.options.backend = resolve_backend(options.backend, options.device, &backend_note);
+  options_.backend = resolve_backend(options.backend, options.device, &backend_note);
   if (!backend_note.empty() && !quiet) std::fprintf(stderr, "note: %s\n", backend_note.c_str());
-  // Create the method first: a bad parameter fails before any expensive work.
-  std::unique_ptr<Method> method = create_method(options.method, method_params);
-  result.method_params = method->params();
-
-  std::unique_ptr<tbb::global_control> threads;
-  if (options.threads > 0)
-    threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, options.threads);
-
-  const Camera& camera = select_camera(scene, options.camera);
-  resolve_resolution(camera, result.options.width, result.options.height);
-  validate(result.options);
+  method_ = create_method(options.method, method_params);
+  if (options.threads > 0) threads_ = std::make_unique<ThreadLimit>(options.threads);
   // A Vulkan render traces every ray through the flat BVH, also those the CPU traces for it (the
   // guide pixels of rtslc's and the hybrid's cuts), so that nothing in it depends on Embree.
-  if (result.options.backend == "vulkan") result.options.accel = "flat";
-  auto accel = result.timer.time("accel_build",
-                                 [&] { return std::make_unique<EmbreeAccel>(scene, result.options.accel == "flat"); });
-  auto lights = result.timer.time("light_setup", [&] { return std::make_unique<LightSampler>(scene); });
-  PinholeCamera pinhole(camera, result.options.width, result.options.height);
-  RenderContext context{scene, *accel, *lights, pinhole, result.options, result.options.width, result.options.height, quiet};
-  result.device = cpu_device_record(result.options);
-  if (result.options.backend == "vulkan") {
+  if (options_.backend == "vulkan") options_.accel = "flat";
+  device_ = cpu_device_record(options_);
 #ifdef SST_HAVE_VULKAN
+  if (options_.backend == "vulkan") vulkan_method_ = gpu::make_vulkan_method(*method_, options.method);
+#endif
+}
+
+FrameRenderer::~FrameRenderer() = default;
+
+void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
+  accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel == "flat"); });
+  lights_ = timer.time("light_setup", [&] { return std::make_unique<LightSampler>(scene); });
+#ifdef SST_HAVE_VULKAN
+  if (options_.backend == "vulkan") {
     // The method's Vulkan side renders with both the CPU structures above (VPL methods build some
     // trees and their cuts on the CPU) and the scene uploaded to the device.
-    std::unique_ptr<gpu::VulkanMethod> vulkan_method = gpu::make_vulkan_method(*method, options.method);
-    auto gpu = result.timer.time("gpu_setup", [&] {
-      return std::make_unique<gpu::GpuRenderContext>(result.options.device, scene, *lights, *accel->flat_bvh());
+    gpu_.reset();
+    gpu_ = timer.time("gpu_setup", [&] {
+      return std::make_unique<gpu::GpuRenderContext>(options_.device, scene, *lights_, *accel_->flat_bvh());
     });
-    result.device = vulkan_device_record(gpu->vulkan().info(), gpu->describe());
-    result.frame = vulkan_method->render(context, *gpu, result.timer);
-    return result;
+    device_ = vulkan_device_record(gpu_->vulkan().info(), gpu_->describe());
+  }
+#endif
+}
+
+RenderResult FrameRenderer::render(const Scene& scene, const Camera& camera, uint32_t seed, int width, int height) {
+  return render_with(*method_, vulkan_method_.get(), options_.method, scene, camera, seed, width, height);
+}
+
+RenderResult FrameRenderer::render_direct(const Scene& scene, const Camera& camera, uint32_t seed) {
+  if (!direct_) {
+    direct_ = create_method("pt", {{"max_bounces", 0}});
+#ifdef SST_HAVE_VULKAN
+    if (options_.backend == "vulkan") vulkan_direct_ = gpu::make_vulkan_method(*direct_, "pt");
 #endif
   }
-  result.frame = method->render(context, result.timer);
+  return render_with(*direct_, vulkan_direct_.get(), "pt", scene, camera, seed, 0, 0);
+}
+
+RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& name,
+                                        const Scene& scene, const Camera& camera, uint32_t seed, int width,
+                                        int height) {
+  if (!accel_) throw Error("FrameRenderer::render before prepare");
+  RenderResult result;
+  result.options = options_;
+  result.options.method = name;
+  result.options.seed = seed;
+  if (width > 0 || height > 0) {
+    result.options.width = width;
+    result.options.height = height;
+  }
+  resolve_resolution(camera, result.options.width, result.options.height);
+  validate(result.options);
+  result.method_params = method.params();
+  result.device = device_;
+  PinholeCamera pinhole(camera, result.options.width, result.options.height);
+  RenderContext context{scene,          *accel_,         *lights_, pinhole, result.options, result.options.width,
+                        result.options.height, quiet_};
+#ifdef SST_HAVE_VULKAN
+  if (vulkan_method) {
+    result.frame = vulkan_method->render(context, *gpu_, result.timer);
+    return result;
+  }
+#else
+  (void)vulkan_method;
+#endif
+  result.frame = method.render(context, result.timer);
+  return result;
+}
+
+RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
+                          bool quiet) {
+  FrameRenderer renderer(options, method_params, quiet);
+  StageTimer setup;
+  renderer.prepare(scene, setup);
+  RenderResult result = renderer.render(scene, select_camera(scene, options.camera), options.seed);
+  StageTimer timer = setup;
+  for (const auto& [stage, ms] : result.timer.stages()) timer.add(stage, ms);
+  result.timer = timer;
   return result;
 }
 

@@ -1,14 +1,22 @@
-// Renders one frame of a loaded scene: acceleration structure, lights, camera, then the method.
+// Renders frames of a loaded scene: acceleration structure, lights, camera, then the method.
 // Shared by sst-render, sst-eval and the tests, so all of them run exactly the same pipeline.
 #pragma once
+#include <memory>
 #include <nlohmann/json.hpp>
 
+#include "core/accel/embree_accel.h"
+#include "core/lights/light_sampler.h"
 #include "core/render/frame.h"
+#include "core/render/method.h"
 #include "core/render/render_options.h"
 #include "core/scene/scene.h"
 #include "core/util/stage_timer.h"
 
 namespace sst {
+namespace gpu {
+class GpuRenderContext;
+class VulkanMethod;
+}  // namespace gpu
 
 struct RenderResult {
   FrameOutput frame;
@@ -22,6 +30,45 @@ struct RenderResult {
 // application pays once (accel_build, light_setup, gpu_setup, shader_compile).
 double frame_ms(const RenderResult& result);
 
+// One method on one backend, rendering frame after frame of a scene whose pose may change between
+// them. What does not depend on the pose (the method, the device) is made once; what does (the
+// acceleration structure, the lights, their uploads) is rebuilt by prepare().
+class FrameRenderer {
+ public:
+  // Validates the options and creates the method; a bad parameter fails before any expensive work.
+  FrameRenderer(const RenderOptions& options, const nlohmann::json& method_params, bool quiet);
+  ~FrameRenderer();
+
+  // Builds the acceleration structure, light sampler and device uploads of `scene` as posed now,
+  // timing them into `timer`; again whenever posing moved geometry or lights.
+  void prepare(const Scene& scene, StageTimer& timer);
+  // One frame of the prepared scene seen by `camera` (as posed), at `width` x `height` (0: the
+  // options'), with `seed`. The result's timer holds the method's stages.
+  RenderResult render(const Scene& scene, const Camera& camera, uint32_t seed, int width = 0, int height = 0);
+  // The same frame's direct light and first-hit AOVs only (the path tracer with no bounce: what
+  // every method's direct pass computes), for a frame whose indirect light is rendered apart.
+  RenderResult render_direct(const Scene& scene, const Camera& camera, uint32_t seed);
+
+  const RenderOptions& options() const { return options_; }  // resolved: backend, accel
+  const EmbreeAccel& accel() const { return *accel_; }
+
+ private:
+  RenderResult render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& method_name,
+                           const Scene& scene, const Camera& camera, uint32_t seed, int width, int height);
+
+  RenderOptions options_;
+  bool quiet_;
+  std::unique_ptr<Method> method_;
+  std::unique_ptr<Method> direct_;  // pt with max_bounces 0, made on first use
+  std::unique_ptr<EmbreeAccel> accel_;
+  std::unique_ptr<LightSampler> lights_;
+  std::unique_ptr<gpu::GpuRenderContext> gpu_;
+  std::unique_ptr<gpu::VulkanMethod> vulkan_method_, vulkan_direct_;
+  nlohmann::json device_;
+  std::unique_ptr<class ThreadLimit> threads_;
+};
+
+// One frame with a scene's selected camera (options.camera): a FrameRenderer prepared and run once.
 RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
                           bool quiet = true);
 

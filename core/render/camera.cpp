@@ -26,14 +26,8 @@ Ray PinholeCamera::generate(float px, float py) const {
 
 const Camera& select_camera(const Scene& scene, const std::string& name_or_index) {
   if (scene.cameras.empty()) throw Error(scene.source + ": the scene has no camera");
-  if (name_or_index.empty()) return scene.cameras.front();
-  for (const Camera& c : scene.cameras)
-    if (c.name == name_or_index) return c;
-  bool numeric = !name_or_index.empty() && name_or_index.find_first_not_of("0123456789") == std::string::npos;
-  if (numeric) {
-    size_t index = std::stoul(name_or_index);
-    if (index < scene.cameras.size()) return scene.cameras[index];
-  }
+  int index = scene.find_camera(name_or_index);
+  if (index >= 0) return scene.cameras[size_t(index)];
   std::string names;
   for (size_t i = 0; i < scene.cameras.size(); ++i)
     names += (i ? ", " : "") + std::to_string(i) + " '" + scene.cameras[i].name + "'";
@@ -46,6 +40,21 @@ void resolve_resolution(const Camera& camera, int& width, int& height) {
   if (width == 0 && height == 0) width = 640;
   if (width == 0) width = std::max(1, int(std::lround(float(height) * aspect)));
   if (height == 0) height = std::max(1, int(std::lround(float(width) / aspect)));
+}
+
+glsl::ViewParams view_params(const PinholeCamera& camera, int width, int height, uint32_t seed) {
+  PinholeCamera::Basis b = camera.basis();
+  glsl::ViewParams p{};
+  p.eye = b.eye;
+  p.tan_half_y = b.tan_half_y;
+  p.right = b.right;
+  p.aspect = b.aspect;
+  p.up = b.up;
+  p.width = uint32_t(width);
+  p.forward = b.forward;
+  p.height = uint32_t(height);
+  p.seed = seed;
+  return p;
 }
 
 }  // namespace sst

@@ -1,6 +1,7 @@
 // Pinhole camera generating primary rays; pixel (0,0) is the top-left corner of the image.
 #pragma once
 #include "core/accel/embree_accel.h"
+#include "core/render/frame_layout.h"
 #include "core/scene/scene.h"
 
 namespace sst {
@@ -23,6 +24,11 @@ class PinholeCamera {
   float tan_half_y_ = 0.0f, aspect_ = 1.0f;
   int width_ = 1, height_ = 1;
 };
+
+// The view of `camera` as the shared kernels and every rendering shader read it (ViewParams of
+// core/render/frame_layout.h), so that both backends generate the same rays. sample_offset and
+// spp are 0: each dispatch sets its own range of sample indices.
+glsl::ViewParams view_params(const PinholeCamera& camera, int width, int height, uint32_t seed);
 
 // Picks a camera by name or index ("" = the first). Throws sst::Error listing what exists.
 const Camera& select_camera(const Scene& scene, const std::string& name_or_index);

@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <string>
 
+#include "core/temporal/temporal_reuse.h"
+
 namespace sst {
 
 struct RenderOptions {
@@ -19,6 +21,14 @@ struct RenderOptions {
   std::string camera;  // name or index; "" = the first
   int threads = 0;     // 0 = all hardware threads
   float exposure = 0.0f;  // stops, applied when writing PNG only
+  // Frames in time (core/pipeline/sequence.h).
+  int frames = 1;
+  int frame_start = 0;
+  float fps = 30.0f;
+  bool temporal = false;
+  TemporalParams temporal_params;
+  std::string denoise = "none";
+  int indirect_scale = 1;
 
   template <class V>
   void visit(V&& v) {
@@ -34,6 +44,15 @@ struct RenderOptions {
     v("camera", camera, "camera name or index (default: the first)");
     v("threads", threads, "CPU threads (0: all)");
     v("exposure", exposure, "exposure in stops for PNG output");
+    v("frames", frames, "frames to render: a sequence when > 1 (one image per frame, out_0007.exr)");
+    v("frame_start", frame_start, "index of the first frame; frame f shows the scene at time f / fps");
+    v("fps", fps, "frames per second of the sequence's clock (glTF animations, key-frame paths)");
+    v("temporal", temporal, "temporal reuse: reproject each pixel's history with motion vectors and accumulate");
+    temporal_params.visit(v);
+    v("denoise", denoise,
+      "none, atrous (edge-avoiding a-trous, Dammertz 2010) or svgf (Schied 2017; accumulates temporally itself)");
+    v("indirect_scale", indirect_scale,
+      "render indirect light at 1/scale of the resolution and upsample it (joint bilateral, thesis ch. 6)");
   }
 };
 
@@ -42,5 +61,7 @@ void validate(const RenderOptions& options);
 
 // The valid values of RenderOptions::backend, for error messages: "cpu, vulkan, auto".
 const char* backend_names();
+// The valid values of RenderOptions::denoise: "none, atrous, svgf".
+const char* denoiser_names();
 
 }  // namespace sst

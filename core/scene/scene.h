@@ -66,6 +66,10 @@ struct Scene {
   // Recomputes bounds; the loader and code-built scenes call it once geometry is final.
   void finalize_bounds();
   bool material_emits(uint32_t m) const;
+  // The index of the camera (or punctual light) named `name_or_index`, matched by name first,
+  // then as a decimal index; -1 when there is none. "" is the first camera.
+  int find_camera(const std::string& name_or_index) const;
+  int find_light(const std::string& name_or_index) const;
 };
 
 }  // namespace sst

@@ -11,20 +11,19 @@ std::string nearest_name(const std::string& name, const std::vector<std::string>
   std::string best;
   size_t best_distance = SIZE_MAX;
   for (const auto& c : candidates) {
-    // Levenshtein distance by dynamic programming over one row.
-    std::vector<size_t> row(c.size() + 1);
-    for (size_t j = 0; j <= c.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= name.size(); ++i) {
-      size_t diagonal = row[0];
-      row[0] = i;
+    // Optimal string alignment distance: Levenshtein plus swapped neighbours at cost 1, the
+    // commonest typo ("vlps" is one edit from "vpls", two from "fps").
+    std::vector<std::vector<size_t>> d(name.size() + 1, std::vector<size_t>(c.size() + 1));
+    for (size_t i = 0; i <= name.size(); ++i) d[i][0] = i;
+    for (size_t j = 0; j <= c.size(); ++j) d[0][j] = j;
+    for (size_t i = 1; i <= name.size(); ++i)
       for (size_t j = 1; j <= c.size(); ++j) {
-        size_t substitution = diagonal + (name[i - 1] == c[j - 1] ? 0 : 1);
-        diagonal = row[j];
-        row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitution});
+        d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (name[i - 1] == c[j - 1] ? 0 : 1)});
+        if (i > 1 && j > 1 && name[i - 1] == c[j - 2] && name[i - 2] == c[j - 1])
+          d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
       }
-    }
-    if (row[c.size()] < best_distance) {
-      best_distance = row[c.size()];
+    if (d[name.size()][c.size()] < best_distance) {
+      best_distance = d[name.size()][c.size()];
       best = c;
     }
   }

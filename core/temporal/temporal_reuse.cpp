@@ -1,0 +1,89 @@
+#include "core/temporal/temporal_reuse.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "core/util/error.h"
+
+#define TEMPORAL_CTX_PARAM const ::sst::TemporalTexel *history,
+#define TEMPORAL_HISTORY(i) (history[i])
+#include "core/temporal/temporal_accumulate.h"
+
+namespace sst {
+
+void validate(const TemporalParams& p) {
+  if (p.history_cap < 1) throw Error("history_cap must be >= 1 (got " + std::to_string(p.history_cap) + ")");
+  if (!(p.depth_tolerance >= 0.0f) || !std::isfinite(p.depth_tolerance))
+    throw Error("depth_tolerance must be finite and >= 0");
+  if (!(p.normal_cos >= -1.0f && p.normal_cos <= 1.0f)) throw Error("normal_cos must be in [-1, 1]");
+}
+
+vec3 demodulation_albedo(vec3 albedo) {
+  vec3 a;
+  for (int k = 0; k < 3; ++k) a[k] = albedo[k] >= 1e-3f ? albedo[k] : 1.0f;
+  return a;
+}
+
+std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& indirect, const Image& albedo,
+                                           const Image& depth, const Image& normal, const Image& motion,
+                                           const Image& previous_depth) {
+  std::vector<TemporalInput> in(direct.pixel_count());
+  tbb::parallel_for(0, direct.height, [&](int y) {
+    for (int x = 0; x < direct.width; ++x) {
+      TemporalInput& t = in[size_t(y) * direct.width + x];
+      vec3 a = demodulation_albedo(albedo.rgb(x, y));
+      t.direct = direct.rgb(x, y) / a;
+      t.indirect = indirect.rgb(x, y) / a;
+      t.depth = depth.at(x, y, 0);
+      t.previous_depth = previous_depth.at(x, y, 0);
+      t.normal = normal.rgb(x, y);
+      t.motion = vec2(motion.at(x, y, 0), motion.at(x, y, 1));
+      t.pad0 = 0.0f;
+      t.pad1 = vec2(0.0f);
+    }
+  });
+  return in;
+}
+
+TemporalPush temporal_push(const TemporalParams& params, int width, int height) {
+  TemporalPush push{};
+  push.width = uint32_t(width);
+  push.height = uint32_t(height);
+  push.history_cap = float(params.history_cap);
+  push.depth_tolerance = params.depth_tolerance;
+  push.normal_cos = params.normal_cos;
+  return push;
+}
+
+std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>& input,
+                                               const std::vector<TemporalTexel>& previous, const TemporalPush& push) {
+  if (input.size() != size_t(push.width) * push.height) throw Error("temporal_accumulate: input size mismatch");
+  // The first frame reads a history that matches nothing (depth 0), so it starts every average.
+  std::vector<TemporalTexel> empty;
+  if (previous.size() != input.size()) empty.assign(input.size(), TemporalTexel{});
+  const std::vector<TemporalTexel>& history = previous.size() == input.size() ? previous : empty;
+  std::vector<TemporalTexel> out(input.size());
+  tbb::parallel_for(0, int(push.height), [&](int y) {
+    for (int x = 0; x < int(push.width); ++x) {
+      size_t i = size_t(y) * push.width + x;
+      out[i] = temporal_accumulate_pixel(history.data(), x, y, input[i], push);
+    }
+  });
+  return out;
+}
+
+TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height, bool direct) {
+  TemporalImages out{Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
+  for (size_t i = 0; i < history.size(); ++i) {
+    const TemporalTexel& t = history[i];
+    vec3 c = direct ? t.direct : t.indirect;
+    for (int k = 0; k < 3; ++k) out.illumination.data[3 * i + k] = c[k];
+    out.moments.data[2 * i] = direct ? t.moments.x : t.moments.z;
+    out.moments.data[2 * i + 1] = direct ? t.moments.y : t.moments.w;
+    out.length.data[i] = t.length;
+  }
+  return out;
+}
+
+}  // namespace sst

@@ -1,0 +1,105 @@
+// Temporal accumulation: running means under a static view, history rejected where the surface
+// changed, bilinear reprojection of a shifted history.
+#include <gtest/gtest.h>
+
+#include "core/temporal/temporal_reuse.h"
+#include "core/util/error.h"
+
+namespace sst {
+namespace {
+
+TemporalInput input(vec3 direct, vec3 indirect, float depth, vec3 normal, vec2 motion) {
+  TemporalInput t{};
+  t.direct = direct;
+  t.indirect = indirect;
+  t.depth = depth;
+  t.previous_depth = depth;
+  t.normal = normal;
+  t.motion = motion;
+  return t;
+}
+
+TemporalPush push(int w, int h, int cap) {
+  TemporalParams p;
+  p.history_cap = cap;
+  return temporal_push(p, w, h);
+}
+
+TEST(TemporalReuse, StaticViewKeepsTheRunningMeanUpToTheCapThenAnExponentialOne) {
+  const int w = 3, h = 2;
+  std::vector<TemporalTexel> history;
+  std::vector<float> values{1.0f, 3.0f, 2.0f, 6.0f, 0.0f};
+  double sum = 0.0;
+  for (size_t f = 0; f < values.size(); ++f) {
+    std::vector<TemporalInput> in(w * h, input(vec3(values[f]), vec3(2.0f * values[f]), 1.0f, vec3(0, 0, 1), vec2(0.0f)));
+    history = temporal_accumulate(in, history, push(w, h, 4));
+    sum += values[f];
+    if (f < 4) {
+      EXPECT_FLOAT_EQ(history[4].direct.x, float(sum / double(f + 1)));
+      EXPECT_FLOAT_EQ(history[4].indirect.y, float(2.0 * sum / double(f + 1)));
+      EXPECT_FLOAT_EQ(history[4].length, float(f + 1));
+    }
+  }
+  // Frame 5 at the cap of 4: alpha = 1/4 on the mean of the first four (3.0).
+  EXPECT_FLOAT_EQ(history[0].direct.x, 3.0f + (0.0f - 3.0f) * 0.25f);
+  EXPECT_FLOAT_EQ(history[0].length, 4.0f);
+  // Moments: luminance of a grey value is the value.
+  EXPECT_NEAR(history[0].moments.x, history[0].direct.x, 1e-5f);
+}
+
+TEST(TemporalReuse, ADisocclusionOrANewNormalRestartsTheHistory) {
+  const int w = 2, h = 1;
+  std::vector<TemporalInput> first(w * h, input(vec3(1.0f), vec3(1.0f), 5.0f, vec3(0, 0, 1), vec2(0.0f)));
+  std::vector<TemporalTexel> history = temporal_accumulate(first, {}, push(w, h, 8));
+  std::vector<TemporalInput> second = first;
+  for (auto& t : second) t.direct = t.indirect = vec3(3.0f);
+  second[0].previous_depth = 4.0f;         // 20% nearer than the history saw: another surface
+  second[1].normal = vec3(1.0f, 0.0f, 0.0f);  // the same depth, but facing elsewhere
+  std::vector<TemporalTexel> next = temporal_accumulate(second, history, push(w, h, 8));
+  for (const TemporalTexel& t : next) {
+    EXPECT_FLOAT_EQ(t.length, 1.0f);
+    EXPECT_FLOAT_EQ(t.direct.x, 3.0f);
+  }
+  // Within the tolerances, the history is kept.
+  second[0].previous_depth = 5.2f;
+  second[1].normal = glm::normalize(vec3(0.1f, 0.0f, 1.0f));
+  next = temporal_accumulate(second, history, push(w, h, 8));
+  for (const TemporalTexel& t : next) {
+    EXPECT_FLOAT_EQ(t.length, 2.0f);
+    EXPECT_FLOAT_EQ(t.direct.x, 2.0f);
+  }
+}
+
+TEST(TemporalReuse, HistoryIsReadBilinearlyAtTheMotionVector) {
+  const int w = 4, h = 1;
+  std::vector<TemporalInput> first(w * h);
+  for (int x = 0; x < w; ++x) first[x] = input(vec3(float(x)), vec3(0.0f), 1.0f, vec3(0, 0, 1), vec2(0.0f));
+  std::vector<TemporalTexel> history = temporal_accumulate(first, {}, push(w, h, 2));
+  // The pixel was a quarter pixel to the right of pixel 1 in the previous frame: history 1.25.
+  std::vector<TemporalInput> second(w * h, input(vec3(0.0f), vec3(0.0f), 1.0f, vec3(0, 0, 1), vec2(0.25f, 0.0f)));
+  std::vector<TemporalTexel> next = temporal_accumulate(second, history, push(w, h, 2));
+  EXPECT_FLOAT_EQ(next[1].direct.x, 0.5f * 1.25f);
+  // The last pixel's right tap is outside the image: its left tap alone carries the history.
+  EXPECT_FLOAT_EQ(next[3].direct.x, 0.5f * 3.0f);
+  // A miss (depth 0) never reads history.
+  second[2].depth = 0.0f;
+  next = temporal_accumulate(second, history, push(w, h, 2));
+  EXPECT_FLOAT_EQ(next[2].length, 1.0f);
+}
+
+TEST(TemporalReuse, DemodulationLeavesBlackChannelsUndivided) {
+  vec3 a = demodulation_albedo(vec3(0.5f, 0.0f, 1e-4f));
+  EXPECT_EQ(a, vec3(0.5f, 1.0f, 1.0f));
+}
+
+TEST(TemporalReuse, ParametersAreValidated) {
+  TemporalParams p;
+  p.history_cap = 0;
+  EXPECT_THROW(validate(p), Error);
+  p = TemporalParams{};
+  p.normal_cos = 2.0f;
+  EXPECT_THROW(validate(p), Error);
+}
+
+}  // namespace
+}  // namespace sst

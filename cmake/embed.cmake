@@ -1,7 +1,11 @@
-# sst_embed_files(OUT file...): a C++ source defining sst::embedded_file(name) for each file's bytes.
-function(sst_embed_files out)
-  set(body "#include <cstddef>\n#include <string_view>\nnamespace sst {\nnamespace {\n")
+# sst_embed_files(OUT FUNCTION file...): a C++ source defining, in namespace sst,
+#   std::string_view FUNCTION(std::string_view name)   each file's bytes by its file name (empty when none)
+#   std::vector<std::string_view> FUNCTION_names()     the names, in the order given
+# Files are read at configure time and are configure dependencies, so editing one regenerates it.
+function(sst_embed_files out function)
+  set(body "#include <cstddef>\n#include <string_view>\n#include <vector>\nnamespace sst {\nnamespace {\n")
   set(table "")
+  set(names "")
   set(i 0)
   foreach(f ${ARGN})
     file(READ ${f} hex HEX)
@@ -9,9 +13,11 @@ function(sst_embed_files out)
     get_filename_component(name ${f} NAME)
     string(APPEND body "const unsigned char file_${i}[] = {${hex}};\n")
     string(APPEND table "  if (name == \"${name}\") return {reinterpret_cast<const char*>(file_${i}), sizeof(file_${i})};\n")
+    string(APPEND names "\"${name}\", ")
     math(EXPR i "${i}+1")
   endforeach()
-  string(APPEND body "}\n// Empty view when no file of that name was embedded.\nstd::string_view embedded_file(std::string_view name) {\n${table}  return {};\n}\n}\n")
+  string(APPEND body "}\nstd::string_view ${function}(std::string_view name) {\n${table}  return {};\n}\n")
+  string(APPEND body "std::vector<std::string_view> ${function}_names() { return {${names}}; }\n}\n")
   file(WRITE ${out}.tmp "${body}")
   configure_file(${out}.tmp ${out} COPYONLY)
   set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${ARGN})

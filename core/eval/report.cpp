@@ -14,7 +14,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/eval/svg_plot.h"
+#include "core/eval/page_template.h"
+#include "core/eval/plot.h"
 #include "core/util/json_io.h"
 
 namespace sst {
@@ -33,9 +34,7 @@ std::string text_of(const json& j) {
 }
 std::string text_of(const json& j, const char* key) { return text_of(member(j, key)); }
 
-// ---- formatting
-
-std::string esc(std::string_view s) { return xml_escape(s); }
+// ---- formatting (the view model holds text as shown; the template escapes it)
 
 // Paths from results.json as URLs relative to the page: percent-encoding everything but
 // unreserved characters and '/' keeps '#', '?', spaces and any "scheme:" from changing what the
@@ -53,7 +52,7 @@ std::string url(std::string_view path) {
       out += hex[c & 15];
     }
   }
-  return esc(out);
+  return out;
 }
 
 // 4 significant digits; scientific outside [1e-3, 1e5) where fixed notation gets too wide.
@@ -79,10 +78,6 @@ std::string fmt_count(double v) {
   char buf[64];
   std::snprintf(buf, sizeof(buf), "%.0f", v);
   return buf;
-}
-
-std::string td(const std::string& html, const char* cls = "num") {
-  return std::string("<td class=\"") + cls + "\">" + html + "</td>";
 }
 
 double mean_finite(const std::vector<double>& values) {
@@ -170,6 +165,36 @@ const json* representative_run(const Index& index, const json& group) {
   return best;
 }
 
+// ---- the pieces of the view model (keys in README.md). Every key a template reads is present,
+// null when absent: Mustache looks a missing key up in the enclosing objects.
+
+json span(std::string text, bool code = false) { return {{"text", std::move(text)}, {"code", code}}; }
+
+json cell(std::string text, const char* cls = "num") {
+  return {{"text", std::move(text)}, {"note", nullptr}, {"code", false},
+          {"class", cls ? json(cls) : json(nullptr)}, {"title", nullptr}, {"header", false}};
+}
+json with(json cell, const char* key, json value) {
+  cell[key] = std::move(value);
+  return cell;
+}
+json code_cell(std::string text, const char* cls = nullptr) { return with(cell(std::move(text), cls), "code", true); }
+json header_cell(std::string text) { return with(cell(std::move(text), nullptr), "header", true); }
+json head_cell(std::string text, json note = nullptr) { return with(cell(std::move(text), nullptr), "note", std::move(note)); }
+
+json row(json cells, const char* cls = nullptr) {
+  return {{"class", cls ? json(cls) : json(nullptr)}, {"cells", std::move(cells)}};
+}
+
+json table(const char* cls, json head_cells, json rows, json note = nullptr) {
+  return {{"class", cls ? json(cls) : json(nullptr)},
+          {"head", head_cells.is_null() ? json(nullptr) : json{{"cells", std::move(head_cells)}}},
+          {"rows", std::move(rows)},
+          {"note", std::move(note)}};
+}
+
+json block(const char* kind, json value) { return {{kind, std::move(value)}}; }
+
 // ---- header
 
 // "path tracer, 1024 spp, 8 bounces, 640×480": what a reader needs to judge the reference.
@@ -201,33 +226,29 @@ std::string machine_summary(const json& m) {
   return s;
 }
 
-std::string fact(const std::string& name, const std::string& html) {
-  return "<tr><th>" + name + "</th><td>" + html + "</td></tr>\n";
+json facts_table(const Index& index) {
+  const json& r = *index.results;
+  const size_t runs = member(r, "runs").size(), groups = member(r, "groups").size();
+  auto fact = [](std::string name, json value) { return row({header_cell(std::move(name)), std::move(value)}); };
+  return table("facts", nullptr,
+               {fact("tool revision", code_cell(text_of(r, "tool_revision"))),
+                fact("machine", cell(machine_summary(member(r, "machine")), nullptr)),
+                fact("device", cell(text_of(r, "device"), nullptr)),
+                fact("runs", cell(std::to_string(runs) + " runs in " + std::to_string(groups) + " groups over " +
+                                      std::to_string(index.scenes.size()) + " scene(s)",
+                                  nullptr))});
 }
 
-std::string references_table(const Index& index) {
-  std::string s = "<table class=\"refs\"><tr><th>scene</th><th>reference</th><th>what</th><th>render time</th></tr>\n";
+json references_table(const Index& index) {
+  json rows = json::array();
   for (const Scene& scene : index.scenes) {
     for (const std::string& id : scene.references) {
       const json& ref = index.reference(id);
-      s += "<tr><td>" + esc(scene_title(scene.name)) + "</td><td><code>" + esc(id) + "</code></td><td>" +
-           esc(reference_summary(ref)) + "</td>" + td(fmt(number(ref, "render_ms") / 1000.0) + " s") + "</tr>\n";
+      rows.push_back(row({cell(scene_title(scene.name), nullptr), code_cell(id), cell(reference_summary(ref), nullptr),
+                          cell(fmt(number(ref, "render_ms") / 1000.0) + " s")}));
     }
   }
-  return s + "</table>\n";
-}
-
-std::string header_html(const Index& index) {
-  const json& r = *index.results;
-  const size_t runs = member(r, "runs").size(), groups = member(r, "groups").size();
-  std::string s = "<h1>sst-eval report: " + esc(text_of(r, "name")) + "</h1>\n<table class=\"facts\">\n";
-  s += fact("tool revision", "<code>" + esc(text_of(r, "tool_revision")) + "</code>");
-  s += fact("machine", esc(machine_summary(member(r, "machine"))));
-  s += fact("device", esc(text_of(r, "device")));
-  s += fact("runs", std::to_string(runs) + " runs in " + std::to_string(groups) + " groups over " +
-                        std::to_string(index.scenes.size()) + " scene(s)");
-  s += "</table>\n<h3>Metrics are against</h3>\n" + references_table(index);
-  return s;
+  return table("refs", {head_cell("scene"), head_cell("reference"), head_cell("what"), head_cell("render time")}, rows);
 }
 
 // ---- group table
@@ -249,7 +270,7 @@ std::vector<double> run_values(const std::vector<const json*>& runs, const char*
 }
 
 // "12.3 [12.0..13.1]": the group's median of run medians, and the extremes over all repeats.
-std::string time_cell(const json& group, const std::vector<const json*>& runs) {
+json time_cell(const json& group, const std::vector<const json*>& runs) {
   double lo = kNaN, hi = kNaN;
   for (const json* r : runs) {
     const double mn = number(member(*r, "time_ms"), "min"), mx = number(member(*r, "time_ms"), "max");
@@ -258,71 +279,65 @@ std::string time_cell(const json& group, const std::vector<const json*>& runs) {
   }
   double median = number(group, "time_ms_median");
   if (!std::isfinite(median)) median = mean_finite(run_values(runs, "time_ms", "median"));
-  std::string s = fmt(median);
-  if (std::isfinite(lo) && std::isfinite(hi)) s += " <span class=\"range\">[" + fmt(lo) + ".." + fmt(hi) + "]</span>";
-  return s;
+  json c = cell(fmt(median));
+  if (std::isfinite(lo) && std::isfinite(hi)) c["note"] = "[" + fmt(lo) + ".." + fmt(hi) + "]";
+  return c;
 }
 
 // The spp rendered; a range when equal-time calibration gave the seeds different counts.
-std::string spp_cell(const std::vector<const json*>& runs) {
+json spp_cell(const std::vector<const json*>& runs) {
   std::vector<double> spp = run_values(runs, nullptr, "spp");
   std::erase_if(spp, [](double v) { return !std::isfinite(v); });
-  if (spp.empty()) return kDash;
+  if (spp.empty()) return cell(kDash);
   const auto [lo, hi] = std::minmax_element(spp.begin(), spp.end());
-  std::string s = fmt_count(*lo) + (*lo == *hi ? "" : "\u2013" + fmt_count(*hi));
+  json c = cell(fmt_count(*lo) + (*lo == *hi ? "" : "\u2013" + fmt_count(*hi)));
   if (!runs.empty() && member(*runs.front(), "time_budget_ms").is_number())
-    s += " <span class=\"range\">(budget " + fmt(number(*runs.front(), "time_budget_ms")) + " ms)</span>";
-  return s;
+    c["note"] = "(budget " + fmt(number(*runs.front(), "time_budget_ms")) + " ms)";
+  return c;
 }
 
-std::string rmse_cell(const json& group) {
+json rmse_cell(const json& group) {
   const double std_dev = number(group, "rmse_std");
-  return fmt(number(group, "rmse_mean")) + (std::isfinite(std_dev) ? " \u00b1 " + fmt(std_dev, 2) : "");
+  return cell(fmt(number(group, "rmse_mean")) + (std::isfinite(std_dev) ? " \u00b1 " + fmt(std_dev, 2) : ""));
 }
 
-std::string group_row(const Index& index, const json& g, const std::vector<std::string>& axes) {
+json group_row(const Index& index, const json& g, const std::vector<std::string>& axes) {
   const std::vector<const json*> runs = index.runs_of(g);
   const bool pareto = member(g, "pareto") == true;
   double ssim = number(g, "ssim_mean");
   if (!std::isfinite(ssim)) ssim = mean_finite(run_values(runs, "metrics", "ssim"));
-  std::string s = pareto
-                      ? "<tr class=\"pareto\"><td class=\"mark\" title=\"on the RMSE-vs-time Pareto front\">\u2605</td>"
-                      : "<tr><td class=\"mark\"></td>";
-  s += td(esc(text_of(g, "label")), "label");
+  json cells = {pareto ? with(cell("\u2605", "mark"), "title", "on the RMSE-vs-time Pareto front") : cell("", "mark"),
+                cell(text_of(g, "label"), "label")};
   for (const std::string& a : axes) {
     const json& v = member(member(g, "axes"), a.c_str());
-    s += td(v.is_null() ? kDash : esc(text_of(v)));
+    cells.push_back(cell(v.is_null() ? kDash : text_of(v)));
   }
-  s += td(spp_cell(runs)) + td(time_cell(g, runs)) + td(rmse_cell(g));
-  s += td(fmt(mean_finite(run_values(runs, "metrics", "rel_mse"))));
-  s += td(fmt(mean_finite(run_values(runs, "metrics", "psnr"))));
-  s += td(fmt(ssim)) + td(fmt(mean_finite(run_values(runs, nullptr, "efficiency"))));
-  s += td(fmt(mean_finite(run_values(runs, nullptr, "ssim_gain_pct_per_ms"))));
-  s += td(fmt(number(g, "bias2"))) + td(fmt(number(g, "variance"))) + td(std::to_string(runs.size()));
-  return s + "</tr>\n";
+  for (json c : {spp_cell(runs), time_cell(g, runs), rmse_cell(g),
+                 cell(fmt(mean_finite(run_values(runs, "metrics", "rel_mse")))),
+                 cell(fmt(mean_finite(run_values(runs, "metrics", "psnr")))), cell(fmt(ssim)),
+                 cell(fmt(mean_finite(run_values(runs, nullptr, "efficiency")))),
+                 cell(fmt(mean_finite(run_values(runs, nullptr, "ssim_gain_pct_per_ms")))),
+                 cell(fmt(number(g, "bias2"))), cell(fmt(number(g, "variance"))), cell(std::to_string(runs.size()))})
+    cells.push_back(std::move(c));
+  return row(std::move(cells), pareto ? "pareto" : nullptr);
 }
 
-std::string group_table(const Index& index, const Scene& scene) {
+json group_table(const Index& index, const Scene& scene) {
   const std::vector<std::string> axes = axis_names(scene);
-  std::string s = "<table class=\"groups\"><thead><tr><th title=\"Pareto front\">\u2605</th><th>label</th>";
-  for (const std::string& a : axes) s += "<th>" + esc(a) + "</th>";
-  s += "<th>spp</th><th>time ms<br><span class=\"range\">median [min..max]</span></th>"
-       "<th>RMSE<br><span class=\"range\">mean \u00b1 std</span></th><th>rel MSE</th><th>PSNR dB</th><th>SSIM</th>"
-       "<th>efficiency 1/s</th><th>SSIM gain %/ms</th><th>bias\u00b2</th><th>variance</th><th>seeds</th>"
-       "</tr></thead>\n<tbody>\n";
-  for (const json* g : scene.groups) s += group_row(index, *g, axes);
-  return s +
-         "</tbody></table>\n<p class=\"note\">\u2605 on the RMSE-vs-time Pareto front of this scene. Time, "
-         "RMSE, SSIM, bias\u00b2 and variance are over the group's seeds; rel MSE, PSNR, efficiency and SSIM "
-         "gain are means over its runs.</p>\n";
+  json head = {with(head_cell("\u2605"), "title", "Pareto front"), head_cell("label")};
+  for (const std::string& a : axes) head.push_back(head_cell(a));
+  for (json c : {head_cell("spp"), head_cell("time ms", "median [min..max]"), head_cell("RMSE", "mean \u00b1 std"),
+                 head_cell("rel MSE"), head_cell("PSNR dB"), head_cell("SSIM"), head_cell("efficiency 1/s"),
+                 head_cell("SSIM gain %/ms"), head_cell("bias\u00b2"), head_cell("variance"), head_cell("seeds")})
+    head.push_back(std::move(c));
+  json rows = json::array();
+  for (const json* g : scene.groups) rows.push_back(group_row(index, *g, axes));
+  return table("groups", head, rows,
+               "\u2605 on the RMSE-vs-time Pareto front of this scene. Time, RMSE, SSIM, bias\u00b2 and variance are "
+               "over the group's seeds; rel MSE, PSNR, efficiency and SSIM gain are means over its runs.");
 }
 
 // ---- plots
-
-std::string figure(const Plot& plot) {
-  if (drawable_point_count(plot) < 2) return "";
-  return "<figure class=\"plot\">" + render_svg(plot) + "</figure>\n";
-}
 
 void sort_by_x(std::vector<PlotPoint>& points) {
   std::stable_sort(points.begin(), points.end(), [](const PlotPoint& a, const PlotPoint& b) { return a.x < b.x; });
@@ -383,172 +398,130 @@ Plot vpl_plot(const Index& index, const Scene& scene, bool rmse) {
   return plot;
 }
 
-std::string plots_html(const Index& index, const Scene& scene) {
-  std::string s = figure(rmse_time_plot(index, scene));
-  if (vpls_vary(scene)) s += figure(vpl_plot(index, scene, true)) + figure(vpl_plot(index, scene, false));
-  return s.empty() ? "" : "<div class=\"plots\">\n" + s + "</div>\n";
+// The scene's plots, each left out when it would have fewer than 2 points.
+json plot_views(const Index& index, const Scene& scene) {
+  std::vector<Plot> plots{rmse_time_plot(index, scene)};
+  if (vpls_vary(scene)) plots.insert(plots.end(), {vpl_plot(index, scene, true), vpl_plot(index, scene, false)});
+  json views = json::array();
+  for (const Plot& plot : plots)
+    if (drawable_point_count(plot) >= 2) views.push_back(plot_view(plot));
+  return views;
 }
 
 // ---- image comparison
 
 // The pane keeps the image's aspect ratio so that zooming scrolls inside it instead of growing it.
-std::string pane_style(const json& run) {
+json aspect_of(const json& run) {
   const double w = number(member(run, "params"), "width"), h = number(member(run, "params"), "height");
-  if (!(w > 0 && h > 0)) return "";
-  return " style=\"aspect-ratio: " + fmt_count(w) + " / " + fmt_count(h) + "\"";
+  if (!(w > 0 && h > 0)) return nullptr;
+  return fmt_count(w) + " / " + fmt_count(h);
 }
 
-std::string reference_card(const Index& index, const std::string& id, const std::string& style) {
+json reference_card(const Index& index, const std::string& id, const json& aspect) {
   const json& ref = index.reference(id);
-  return "<div class=\"card ref\"><h4>reference <code>" + esc(id) + "</code></h4><p class=\"sub\">" +
-         esc(reference_summary(ref)) + "</p><figure><div class=\"pane\"" + style + "><img src=\"" +
-         url(text_of(ref, "image_png")) +
-         "\" alt=\"reference\"></div><figcaption>reference</figcaption>"
-         "</figure></div>\n";
+  return {{"reference", true},
+          {"heading", {span("reference "), span(id, true)}},
+          {"axes", nullptr},
+          {"sub", {span(reference_summary(ref))}},
+          {"figures", {image_figure(text_of(ref, "image_png"), "reference", "reference", aspect)}}};
 }
 
-std::string run_card(const Index& index, const json& group, const json& run) {
+json run_card(const Index& index, const json& group, const json& run) {
   const json& images = member(run, "images");
-  const std::string id = text_of(run, "id"), style = pane_style(run);
-  const std::string ref_png = text_of(index.reference(text_of(run, "reference")), "image_png");
-  const std::string axes = axes_text(member(group, "axes"));
-  std::string s = "<div class=\"card\"><h4>" + esc(text_of(group, "label")) +
-                  (axes.empty() ? "" : " <span class=\"axes\">" + esc(axes) + "</span>") + "</h4>";
-  s += "<p class=\"sub\">run <code>" + esc(id) + "</code> (seed " + esc(text_of(run, "seed")) + "), RMSE " +
-       fmt(number(member(run, "metrics"), "rmse")) + ", SSIM " + fmt(number(member(run, "metrics"), "ssim")) + ", " +
-       fmt(number(member(run, "time_ms"), "median")) + " ms</p><div class=\"pair\">";
-  s += "<figure><div class=\"pane\"" + style + "><img class=\"flip\" src=\"" + url(text_of(images, "png")) +
-       "\" data-run=\"" + url(text_of(images, "png")) + "\" data-ref=\"" + url(ref_png) + "\" data-id=\"" + esc(id) +
-       "\" alt=\"run " + esc(id) +
-       "\" title=\"click: flip between this run and the reference\"></div>"
-       "<figcaption>showing <b class=\"which\">run " +
-       esc(id) + "</b> (click to flip)</figcaption></figure>";
+  const std::string id = text_of(run, "id"), png = text_of(images, "png");
+  const json aspect = aspect_of(run);
+  json flip = image_figure(png, "run " + id, nullptr, aspect);
+  flip["flip"] = {{"run", url(png)}, {"ref", url(text_of(index.reference(text_of(run, "reference")), "image_png"))},
+                  {"id", id}};
+  json figures = {flip};
   // A pruned results folder keeps no heat maps (sst-eval sweep writes them; prune_results.sh drops them).
-  if (!text_of(images, "error_png").empty())
-    s += "<figure><div class=\"pane\"" + style + "><img src=\"" + url(text_of(images, "error_png")) +
-         "\" alt=\"error of " + esc(id) +
-         "\"></div><figcaption>relative error, 0 (black) .. \u22651 (yellow) "
-         "<span class=\"ramp\"></span></figcaption></figure>";
-  return s + "</div></div>\n";
+  if (!text_of(images, "error_png").empty()) {
+    json error = image_figure(text_of(images, "error_png"), "error of " + id,
+                              "relative error, 0 (black) .. \u22651 (yellow)", aspect);
+    error["ramp"] = true;
+    figures.push_back(error);
+  }
+  const std::string axes = axes_text(member(group, "axes"));
+  return {{"reference", false},
+          {"heading", {span(text_of(group, "label"))}},
+          {"axes", axes.empty() ? json(nullptr) : json(axes)},
+          {"sub",
+           {span("run "), span(id, true),
+            span(" (seed " + text_of(run, "seed") + "), RMSE " + fmt(number(member(run, "metrics"), "rmse")) +
+                 ", SSIM " + fmt(number(member(run, "metrics"), "ssim")) + ", " +
+                 fmt(number(member(run, "time_ms"), "median")) + " ms")}},
+          {"figures", figures}};
 }
 
-std::string comparison_html(const Index& index, const Scene& scene) {
-  std::string cards;
-  const std::string style = scene.runs.empty() ? "" : pane_style(*scene.runs.front());
-  for (const std::string& id : scene.references) cards += reference_card(index, id, style);
+json image_grid(const Index& index, const Scene& scene) {
+  json cards = json::array();
+  const json aspect = scene.runs.empty() ? json(nullptr) : aspect_of(*scene.runs.front());
+  for (const std::string& id : scene.references) cards.push_back(reference_card(index, id, aspect));
   for (const json* g : scene.groups)
-    if (const json* run = representative_run(index, *g)) cards += run_card(index, *g, *run);
-  if (cards.empty()) return "";
-  return "<div class=\"compare\"><div class=\"controls\">zoom <select class=\"zoom\"><option value=\"fit\">fit"
-         "</option><option value=\"1\">1\u00d7</option><option value=\"2\">2\u00d7</option><option value=\"4\">"
-         "4\u00d7</option><option value=\"8\">8\u00d7</option></select> <button class=\"flip-all\">show all "
-         "references</button> <span class=\"note\">one run per group (seed 0); click an image to flip it "
-         "with its reference; the panes scroll together</span></div>\n<div class=\"cards\">\n" +
-         cards + "</div></div>\n";
+    if (const json* run = representative_run(index, *g)) cards.push_back(run_card(index, *g, *run));
+  if (cards.empty()) return nullptr;
+  return {{"note", "one run per group (seed 0); click an image to flip it with its reference; the panes scroll together"},
+          {"cards", cards}};
 }
 
 // ---- scene section, runs table, page
 
-std::string scene_html(const Index& index, const Scene& scene) {
-  std::string s = "<section class=\"scene\"><h2>" + esc(scene_title(scene.name)) + "</h2>\n";
+json scene_section(const Index& index, const Scene& scene) {
+  json blocks = json::array();
   for (const std::string& id : scene.references)
-    s += "<p class=\"sub\">metrics against reference <code>" + esc(id) +
-         "</code>: " + esc(reference_summary(index.reference(id))) + "</p>\n";
-  if (!scene.groups.empty()) s += group_table(index, scene);
-  s += plots_html(index, scene);
-  s += "<h3>Images</h3>\n" + comparison_html(index, scene);
-  return s + "</section>\n";
+    blocks.push_back(block("paragraph", {{"spans",
+                                          {span("metrics against reference "), span(id, true),
+                                           span(": " + reference_summary(index.reference(id)))}}}));
+  if (!scene.groups.empty()) blocks.push_back(block("table", group_table(index, scene)));
+  json plots = plot_views(index, scene);
+  if (!plots.empty()) blocks.push_back(block("plots", {{"items", plots}}));
+  blocks.push_back(block("heading", "Images"));
+  if (json grid = image_grid(index, scene); !grid.is_null()) blocks.push_back(block("images", grid));
+  return {{"name", scene_title(scene.name)}, {"blocks", blocks}};
 }
 
-std::string runs_table(const Index& index) {
+json runs_details(const Index& index) {
   const json& runs = member(*index.results, "runs");
-  std::string s = "<details class=\"runs\"><summary>All " + std::to_string(runs.size()) +
-                  " runs</summary>\n<table><thead><tr><th>id</th><th>label</th><th>scene</th><th>seed</th><th>spp"
-                  "</th><th>time ms</th><th>RMSE</th><th>SSIM</th></tr></thead><tbody>\n";
-  for (const json& r : runs) {
-    s += "<tr>" + td("<code>" + esc(text_of(r, "id")) + "</code>", "id") + td(esc(text_of(r, "label")), "label") +
-         td(esc(scene_title(text_of(r, "scene"))), "label") + td(esc(text_of(r, "seed"))) + td(esc(text_of(r, "spp"))) +
-         td(fmt(number(member(r, "time_ms"), "median"))) + td(fmt(number(member(r, "metrics"), "rmse"))) +
-         td(fmt(number(member(r, "metrics"), "ssim"))) + "</tr>\n";
-  }
-  return s + "</tbody></table></details>\n";
+  json rows = json::array();
+  for (const json& r : runs)
+    rows.push_back(row({code_cell(text_of(r, "id"), "id"), cell(text_of(r, "label"), "label"),
+                        cell(scene_title(text_of(r, "scene")), "label"), cell(text_of(r, "seed")),
+                        cell(text_of(r, "spp")), cell(fmt(number(member(r, "time_ms"), "median"))),
+                        cell(fmt(number(member(r, "metrics"), "rmse"))),
+                        cell(fmt(number(member(r, "metrics"), "ssim")))}));
+  json head = json::array();
+  for (const char* name : {"id", "label", "scene", "seed", "spp", "time ms", "RMSE", "SSIM"}) head.push_back(head_cell(name));
+  return {{"summary", "All " + std::to_string(runs.size()) + " runs"}, {"table", table(nullptr, head, rows)}};
 }
-
-const char* const kStyle = R"(<style>
-body { font: 14px/1.45 system-ui, sans-serif; margin: 24px; color: #222; background: #fafafa; }
-h1 { font-size: 22px; margin: 0 0 12px; } h2 { font-size: 19px; margin: 0 0 6px; }
-h3 { font-size: 15px; margin: 18px 0 6px; } h4 { font-size: 14px; margin: 0; }
-code { font: 12px ui-monospace, monospace; }
-table { border-collapse: collapse; background: #fff; }
-th, td { border: 1px solid #ddd; padding: 3px 7px; vertical-align: top; }
-th { background: #f0f0f0; font-weight: 600; text-align: left; }
-table.facts th { width: 9em; }
-table.groups th { text-align: center; font-size: 13px; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
-td.mark { text-align: center; color: #c58b00; }
-tr.pareto td { background: #fff8e1; } tr.pareto td.label { font-weight: 600; }
-.range, .sub, .note, .axes { color: #666; font-size: 12px; font-weight: normal; }
-section.scene { background: #fff; border: 1px solid #ddd; border-radius: 6px; padding: 14px 18px; margin: 20px 0; }
-.plots { display: flex; flex-wrap: wrap; gap: 12px; margin-top: 12px; }
-figure { margin: 0; } figcaption { font-size: 12px; color: #444; margin-top: 3px; }
-.controls { margin: 6px 0 10px; } .cards { display: flex; flex-wrap: wrap; gap: 14px; }
-.card { border: 1px solid #ddd; border-radius: 4px; padding: 8px; background: #fcfcfc; }
-.card .sub { margin: 2px 0 6px; } .pair { display: flex; gap: 8px; }
-.pane { width: 300px; max-height: 70vh; overflow: auto; background: #000; }
-.pane img { display: block; width: 100%; image-rendering: pixelated; }
-img.flip { cursor: pointer; }
-.ramp { display: inline-block; width: 80px; height: 9px; vertical-align: middle; border: 1px solid #999;
-  background: linear-gradient(90deg, #000004, #420a68, #932667, #dd513a, #fca50a, #fcffa4); }
-details.runs { margin-top: 20px; } details.runs summary { cursor: pointer; font-weight: 600; }
-</style>
-)";
-
-// Flip, zoom and synchronised scrolling, per .compare block.
-const char* const kScript = R"(<script>
-function show(img, ref) {
-  img.src = ref ? img.dataset.ref : img.dataset.run;
-  img.dataset.showing = ref ? 'ref' : 'run';
-  img.closest('figure').querySelector('.which').textContent = ref ? 'reference' : 'run ' + img.dataset.id;
-}
-document.querySelectorAll('.compare').forEach(function (box) {
-  var imgs = box.querySelectorAll('img.flip'), panes = box.querySelectorAll('.pane'), all = false, busy = false;
-  imgs.forEach(function (img) {
-    img.addEventListener('click', function () { show(img, img.dataset.showing !== 'ref'); });
-  });
-  box.querySelector('.flip-all').addEventListener('click', function (e) {
-    all = !all;
-    imgs.forEach(function (img) { show(img, all); });
-    e.target.textContent = all ? 'show all runs' : 'show all references';
-  });
-  box.querySelector('.zoom').addEventListener('change', function (e) {
-    var z = e.target.value;
-    box.querySelectorAll('.pane img').forEach(function (img) {
-      img.style.width = z === 'fit' ? '100%' : (img.naturalWidth * z) + 'px';
-    });
-  });
-  panes.forEach(function (p) {
-    p.addEventListener('scroll', function () {
-      if (busy) return;
-      busy = true;
-      panes.forEach(function (q) { if (q !== p) { q.scrollLeft = p.scrollLeft; q.scrollTop = p.scrollTop; } });
-      requestAnimationFrame(function () { busy = false; });
-    });
-  });
-});
-</script>
-)";
 
 }  // namespace
 
-std::string make_report_html(const nlohmann::json& results) {
-  const Index index = build_index(results);
-  std::string s = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>sst-eval report: " +
-                  esc(text_of(results, "name")) + "</title>\n" + kStyle + "</head><body>\n";
-  s += header_html(index);
-  for (const Scene& scene : index.scenes) s += scene_html(index, scene);
-  s += runs_table(index);
-  return s + kScript + "</body></html>\n";
+nlohmann::json image_figure(std::string_view path, std::string alt, nlohmann::json caption, nlohmann::json aspect) {
+  return {{"src", url(path)}, {"video", nullptr}, {"link", nullptr}, {"alt", std::move(alt)},
+          {"caption", std::move(caption)}, {"ramp", false}, {"flip", nullptr}, {"aspect", std::move(aspect)}};
 }
+
+nlohmann::json video_figure(std::string_view path, nlohmann::json caption, nlohmann::json aspect) {
+  json figure = image_figure("", "", std::move(caption), std::move(aspect));
+  figure["src"] = nullptr;
+  figure["video"] = url(path);
+  return figure;
+}
+
+nlohmann::json report_view(const nlohmann::json& results) {
+  const Index index = build_index(results);
+  json sections = json::array();
+  for (const Scene& scene : index.scenes) sections.push_back(scene_section(index, scene));
+  return {{"title", "sst-eval report: " + text_of(results, "name")},
+          {"facts", facts_table(index)},
+          {"references", references_table(index)},
+          {"sections", sections},
+          {"runs", runs_details(index)}};
+}
+
+std::string render_report(const nlohmann::json& view) { return render_page_template("report.html", view); }
+
+std::string make_report_html(const nlohmann::json& results) { return render_report(report_view(results)); }
 
 // Image paths whose files are gone (a results folder pruned for committing) become null, so the
 // page shows a dash instead of a broken image.

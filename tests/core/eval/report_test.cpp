@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <set>
 #include <sstream>
 
 namespace sst {
@@ -125,57 +127,158 @@ json fixture(int seeds = 2) {
   return r;
 }
 
+// ---- reading the view model
+
+const json& section(const json& view, const std::string& name) {
+  for (const json& s : view["sections"])
+    if (s["name"] == name) return s;
+  ADD_FAILURE() << "no section " << name;
+  static const json none;
+  return none;
+}
+
+// The values of the section's blocks of one kind ("table", "plots", "images", ...), in order.
+std::vector<json> blocks(const json& section, const std::string& kind) {
+  std::vector<json> out;
+  for (const json& b : section["blocks"])
+    if (b.contains(kind)) out.push_back(b[kind]);
+  return out;
+}
+
+std::vector<json> all_blocks(const json& view, const std::string& kind) {
+  std::vector<json> out;
+  for (const json& s : view["sections"])
+    for (json& b : blocks(s, kind)) out.push_back(std::move(b));
+  return out;
+}
+
+std::vector<json> figures(const json& view) {
+  std::vector<json> out;
+  for (const json& grid : all_blocks(view, "images"))
+    for (const json& card : grid["cards"])
+      for (const json& f : card["figures"]) out.push_back(f);
+  return out;
+}
+
+std::string plain(const json& spans) {
+  std::string s;
+  for (const json& span : spans) s += span["text"].get<std::string>();
+  return s;
+}
+
+// The cell texts of a table's column, by its head's text.
+std::vector<std::string> column(const json& table, const std::string& head) {
+  size_t at = 0;
+  while (at < table["head"]["cells"].size() && table["head"]["cells"][at]["text"] != head) ++at;
+  EXPECT_LT(at, table["head"]["cells"].size()) << head;
+  std::vector<std::string> out;
+  for (const json& row : table["rows"]) out.push_back(row["cells"].at(at)["text"]);
+  return out;
+}
+
+// The group table row whose label and axes text match.
+const json& group_row(const json& table, const std::string& label, const std::string& vpls) {
+  const std::vector<std::string> labels = column(table, "label"), vpl = column(table, "vpls");
+  for (size_t i = 0; i < labels.size(); ++i)
+    if (labels[i] == label && vpl[i] == vpls) return table["rows"][i];
+  ADD_FAILURE() << "no row " << label << " " << vpls;
+  static const json none;
+  return none;
+}
+
+std::vector<json> plots(const json& view) {
+  std::vector<json> out;
+  for (const json& b : all_blocks(view, "plots"))
+    for (const json& p : b["items"]) out.push_back(p);
+  return out;
+}
+
+size_t marker_count(const json& plot) {
+  size_t n = 0;
+  for (const json& s : plot["series"]) n += s["markers"].size();
+  return n;
+}
+
 TEST(Report, ContainsEveryRunIdAndImagePath) {
   const json r = fixture();
-  const std::string html = make_report_html(r);
+  const json view = report_view(r);
   ASSERT_EQ(r["runs"].size(), 20u);
+  const std::vector<std::string> ids = column(view["runs"]["table"], "id");
+  std::vector<std::string> srcs;
+  for (const json& f : figures(view)) srcs.push_back(f["src"]);
+  auto shown = [&](const std::string& src) { return std::count(srcs.begin(), srcs.end(), src); };
   for (const json& run : r["runs"]) {
-    EXPECT_TRUE(contains(html, run["id"].get<std::string>())) << run["id"];
-    if (run["seed"] == 0) {  // the comparison view shows each group's seed-0 run
-      EXPECT_TRUE(contains(html, "src=\"" + run["images"]["png"].get<std::string>() + "\"")) << run["id"];
-      EXPECT_TRUE(contains(html, "src=\"" + run["images"]["error_png"].get<std::string>() + "\"")) << run["id"];
-    }
+    EXPECT_EQ(std::count(ids.begin(), ids.end(), run["id"].get<std::string>()), 1) << run["id"];
+    // The comparison view shows each group's seed-0 run.
+    EXPECT_EQ(shown(run["images"]["png"]), run["seed"] == 0 ? 1 : 0) << run["id"];
+    EXPECT_EQ(shown(run["images"]["error_png"]), run["seed"] == 0 ? 1 : 0) << run["id"];
   }
-  for (const auto& [id, ref] : r["references"].items())
-    EXPECT_TRUE(contains(html, "src=\"" + ref["image_png"].get<std::string>() + "\"")) << id;
+  for (const auto& [id, ref] : r["references"].items()) EXPECT_EQ(shown(ref["image_png"]), 1) << id;
 }
 
 TEST(Report, ComparisonShowsTheSeedZeroRunOfEachGroupBesideItsReference) {
   const json r = fixture();
-  const std::string html = make_report_html(r);
-  EXPECT_EQ(count(html, "<img class=\"flip\""), r["groups"].size());
-  for (const json& run : r["runs"]) {
-    const std::string png = run["images"]["png"];
-    EXPECT_EQ(count(html, "data-run=\"" + png + "\""), run["seed"] == 0 ? 1u : 0u) << png;
+  const json view = report_view(r);
+  size_t flips = 0, errors = 0, stair_refs = 0;
+  for (const json& f : figures(view)) {
+    if (f["flip"].is_object()) {
+      ++flips;
+      EXPECT_EQ(f["flip"]["run"], f["src"]);
+      EXPECT_TRUE(f["src"].get<std::string>().starts_with("runs/" + f["flip"]["id"].get<std::string>() + "/"));
+      stair_refs += f["flip"]["ref"] == std::string("references/") + kStairRef + ".png";
+    }
+    if (f["ramp"] == true) {
+      ++errors;
+      EXPECT_EQ(f["caption"], "relative error, 0 (black) .. \u22651 (yellow)");
+    }
+    EXPECT_EQ(f["aspect"], "160 / 120");
   }
-  EXPECT_EQ(count(html, std::string("data-ref=\"references/") + kStairRef + ".png\""), r["groups"].size() / 2);
-  EXPECT_EQ(count(html, "relative error, 0 (black) .. \u22651 (yellow)"), r["groups"].size());
-  EXPECT_TRUE(contains(html, "image-rendering: pixelated"));
-  EXPECT_TRUE(contains(html, "<select class=\"zoom\">"));
+  EXPECT_EQ(flips, r["groups"].size());
+  EXPECT_EQ(errors, r["groups"].size());
+  EXPECT_EQ(stair_refs, r["groups"].size() / 2);
+  for (const json& run : r["runs"])
+    if (run["seed"] == 0) {
+      bool found = false;
+      for (const json& f : figures(view)) found |= f["flip"].is_object() && f["flip"]["id"] == run["id"];
+      EXPECT_TRUE(found) << run["id"];
+    }
+  const json card = all_blocks(view, "images").at(0)["cards"].at(1);  // after the reference's card
+  EXPECT_EQ(plain(card["heading"]), "pt");
+  EXPECT_EQ(plain(card["sub"]), "run 0000-pt (seed 0), RMSE 0.09000, SSIM 0.8000, 40.00 ms");
 }
 
 TEST(Report, HeaderSaysWhatTheMetricsAreAgainst) {
-  const std::string html = make_report_html(fixture());
-  EXPECT_TRUE(contains(html, "<h1>sst-eval report: demo</h1>"));
-  EXPECT_TRUE(contains(html, "abc1234"));
-  EXPECT_TRUE(contains(html, "Test CPU 9000; 2 threads"));
-  EXPECT_TRUE(contains(html, "cpu: Test CPU 9000"));
-  EXPECT_TRUE(contains(html, "20 runs in 10 groups over 2 scene(s)"));
-  EXPECT_TRUE(contains(html, "path tracer, 1024 spp, 8 bounces, 160\u00d7120"));
-  EXPECT_TRUE(contains(html, "VPL ground truth (exhaustive), 16 spp, 100000 VPLs"));
-  EXPECT_TRUE(contains(html, "81.23 s"));  // reference render time
+  const json view = report_view(fixture());
+  EXPECT_EQ(view["title"], "sst-eval report: demo");
+  std::map<std::string, std::string> facts;
+  for (const json& row : view["facts"]["rows"]) facts[row["cells"][0]["text"]] = row["cells"][1]["text"];
+  EXPECT_EQ(facts["tool revision"], "abc1234");
+  EXPECT_EQ(facts["machine"], "Test CPU 9000; 2 threads; os: Linux");
+  EXPECT_EQ(facts["device"], "cpu: Test CPU 9000");
+  EXPECT_EQ(facts["runs"], "20 runs in 10 groups over 2 scene(s)");
+  const json& refs = view["references"];
+  EXPECT_EQ(column(refs, "what"), (std::vector<std::string>{"path tracer, 1024 spp, 8 bounces, 160\u00d7120",
+                                                            "VPL ground truth (exhaustive), 16 spp, 100000 VPLs, 160\u00d7120"}));
+  EXPECT_EQ(column(refs, "render time")[0], "81.23 s");
+  EXPECT_EQ(column(refs, "reference"), (std::vector<std::string>{kCornellRef, kStairRef}));
+  EXPECT_EQ(plain(blocks(section(view, "staircase.gltf"), "paragraph").at(0)["spans"]),
+            std::string("metrics against reference ") + kStairRef + ": VPL ground truth (exhaustive), 16 spp, 100000 VPLs, 160\u00d7120");
 }
 
 TEST(Report, HasATablePerSceneAndAllRunsInDetails) {
   const json r = fixture();
-  const std::string html = make_report_html(r);
-  EXPECT_EQ(count(html, "<table class=\"groups\">"), 2u);
-  EXPECT_EQ(count(html, "<section class=\"scene\"><h2>cornell-box.gltf</h2>"), 1u);
-  EXPECT_EQ(count(html, "<section class=\"scene\"><h2>staircase.gltf</h2>"), 1u);
-  const size_t details = html.find("<details class=\"runs\"><summary>All 20 runs</summary>");
-  ASSERT_NE(details, std::string::npos);
-  for (const json& run : r["runs"])
-    EXPECT_NE(html.find("<code>" + run["id"].get<std::string>() + "</code>", details), std::string::npos);
+  const json view = report_view(r);
+  ASSERT_EQ(view["sections"].size(), 2u);
+  EXPECT_EQ(view["sections"][0]["name"], "cornell-box.gltf");
+  EXPECT_EQ(view["sections"][1]["name"], "staircase.gltf");
+  for (const json& s : view["sections"]) {
+    const std::vector<json> tables = blocks(s, "table");
+    ASSERT_EQ(tables.size(), 1u);
+    EXPECT_EQ(tables[0]["class"], "groups");
+    EXPECT_EQ(tables[0]["rows"].size(), 5u);
+  }
+  EXPECT_EQ(view["runs"]["summary"], "All 20 runs");
+  EXPECT_EQ(view["runs"]["table"]["rows"].size(), 20u);
 }
 
 TEST(Report, FormatsNumbersWithFourSignificantDigits) {
@@ -183,61 +286,80 @@ TEST(Report, FormatsNumbersWithFourSignificantDigits) {
   r["runs"][0]["time_ms"]["median"] = 12.34567;
   r["runs"][0]["metrics"]["rmse"] = 0.0123456;
   r["runs"][0]["metrics"]["ssim"] = nullptr;
-  const std::string html = make_report_html(r);
-  EXPECT_TRUE(contains(html, ">12.35<"));
-  EXPECT_TRUE(contains(html, ">0.01235<"));
-  EXPECT_TRUE(contains(html, "<td class=\"num\">\u2014</td>"));  // a null is a dash
-  EXPECT_FALSE(contains(html, "12.34567"));
-  EXPECT_FALSE(contains(html, "nan"));
+  const json runs = report_view(r)["runs"]["table"];
+  EXPECT_EQ(column(runs, "time ms")[0], "12.35");
+  EXPECT_EQ(column(runs, "RMSE")[0], "0.01235");
+  EXPECT_EQ(column(runs, "SSIM")[0], "\u2014");  // a null is a dash
+  EXPECT_EQ(column(runs, "SSIM")[1], "0.8000");
+  EXPECT_EQ(runs["rows"][0]["cells"][0]["code"], true);  // the id
 }
 
 TEST(Report, TimeCellShowsTheMedianAndTheRangeOverRuns) {
-  const json r = fixture();
   // Group slc vpls=1000 of the first scene: median 4 ms, runs 4 and 4.04 ms, min 0.97x, max 1.05x.
-  EXPECT_TRUE(contains(make_report_html(r), "4.000 <span class=\"range\">[3.880..4.242]</span>"));
+  const json table = blocks(report_view(fixture())["sections"][0], "table").at(0);
+  const json& time = group_row(table, "slc", "1000")["cells"].at(4);
+  EXPECT_EQ(time["text"], "4.000");
+  EXPECT_EQ(time["note"], "[3.880..4.242]");
 }
 
 TEST(Report, MarksParetoRows) {
   const json r = fixture();
-  const std::string html = make_report_html(r);
-  size_t pareto = 0;
+  const json view = report_view(r);
+  size_t pareto = 0, marked = 0;
   for (const json& g : r["groups"]) pareto += g["pareto"] == true;
   ASSERT_GT(pareto, 0u);
   ASSERT_LT(pareto, r["groups"].size());
-  EXPECT_EQ(count(html, "<tr class=\"pareto\">"), pareto);
+  for (const json& table : all_blocks(view, "table"))
+    for (const json& row : table["rows"]) {
+      const bool on_front = row["class"] == "pareto";
+      marked += on_front;
+      EXPECT_EQ(row["cells"][0]["text"], on_front ? "\u2605" : "");
+      EXPECT_EQ(row["cells"][0]["class"], "mark");
+    }
+  EXPECT_EQ(marked, pareto);
   // The fastest group of each scene (sst vpls=1000) is always on the front.
-  EXPECT_TRUE(contains(html,
-                       "<tr class=\"pareto\"><td class=\"mark\" title=\"on the RMSE-vs-time Pareto front\">"
-                       "\u2605</td><td class=\"label\">sst</td><td class=\"num\">1000</td>"));
+  for (const json& table : all_blocks(view, "table")) EXPECT_EQ(group_row(table, "sst", "1000")["class"], "pareto");
 }
 
 TEST(Report, DrawsThreePlotsPerSceneWhenVplsVary) {
-  const std::string html = make_report_html(fixture());
-  EXPECT_EQ(count(html, "<svg"), 6u);
-  EXPECT_EQ(count(html, "RMSE vs time: cornell-box.gltf"), 1u);
-  EXPECT_EQ(count(html, "RMSE vs VPL count: staircase.gltf"), 1u);
-  EXPECT_EQ(count(html, "Time vs VPL count: staircase.gltf"), 1u);
-  EXPECT_EQ(count(html, "stroke-dasharray=\"6 4\""), 2u * 2u);  // the Pareto line and its legend, per scene
-  // 5 groups per scene: 5 markers in each of the 3 plots, less pt's in the two VPL plots.
-  EXPECT_EQ(count(html, "class=\"marker\""), 2u * (5u + 4u + 4u));
+  const json view = report_view(fixture());
+  const std::vector<json> all = plots(view);
+  ASSERT_EQ(all.size(), 6u);
+  std::vector<std::string> titles;
+  for (const json& p : all) titles.push_back(p["title"]);
+  EXPECT_EQ(titles, (std::vector<std::string>{"RMSE vs time: cornell-box.gltf", "RMSE vs VPL count: cornell-box.gltf",
+                                              "Time vs VPL count: cornell-box.gltf", "RMSE vs time: staircase.gltf",
+                                              "RMSE vs VPL count: staircase.gltf", "Time vs VPL count: staircase.gltf"}));
+  EXPECT_EQ(all[0]["highlight"]["name"], "Pareto front");  // the dashed line, RMSE vs time only
+  EXPECT_TRUE(all[1]["highlight"].is_null());
+  EXPECT_EQ(all[0]["x_axis"]["scale"], "log10");
+  EXPECT_EQ(all[2]["y_axis"]["scale"], "linear");
+  // 5 groups per scene: 5 markers in the RMSE-vs-time plot, less pt's in the two VPL plots.
+  for (size_t i = 0; i < all.size(); ++i) EXPECT_EQ(marker_count(all[i]), i % 3 == 0 ? 5u : 4u) << i;
 }
 
 TEST(Report, KeepsOneColourPerLabelAcrossPlots) {
-  const std::string html = make_report_html(fixture());
   // Labels in order of appearance: pt, slc, sst -> palette entries 0, 1, 2 in every plot, though
   // slc is the first series of the VPL plots (pt has no VPLs).
-  const std::string slc_marker = "class=\"marker\" fill=\"#f28e2b\"";
-  EXPECT_EQ(count(html, slc_marker), 2u * (2u + 2u + 2u));
-  EXPECT_EQ(count(html, "class=\"marker\" fill=\"#4e79a7\""), 2u * 1u);  // pt, only in RMSE vs time
+  for (const json& p : plots(report_view(fixture()))) {
+    for (const json& s : p["series"]) {
+      const std::string name = s["name"];
+      const char* colour = name == "pt" ? "#4e79a7" : name.starts_with("slc") ? "#f28e2b" : "#e15759";
+      EXPECT_EQ(s["colour"], colour) << name;
+    }
+  }
 }
 
 TEST(Report, SppColumnShowsTheRenderedCount) {
   json r = fixture();
   for (json& g : r["groups"])
     if (g["label"] == "pt") g["axes"] = {{"spp", 4}};  // an spp axis gets no column of its own
-  const std::string html = make_report_html(r);
-  EXPECT_EQ(count(html, "<th>spp</th>"), 2u + 1u);  // a group table per scene, and the runs table
-  EXPECT_TRUE(contains(html, "<td class=\"label\">pt</td><td class=\"num\">\u2014</td><td class=\"num\">4</td>"));
+  const json table = blocks(report_view(r)["sections"][0], "table").at(0);
+  std::vector<std::string> heads;
+  for (const json& c : table["head"]["cells"]) heads.push_back(c["text"]);
+  EXPECT_EQ(std::count(heads.begin(), heads.end(), "spp"), 1);
+  const json& pt = group_row(table, "pt", "\u2014");
+  EXPECT_EQ(pt["cells"][3]["text"], "4");
 }
 
 TEST(Report, OmitsPlotsWithFewerThanTwoPoints) {
@@ -247,17 +369,17 @@ TEST(Report, OmitsPlotsWithFewerThanTwoPoints) {
   for (const json& g : r["groups"])
     if (g["label"] == "pt") groups.push_back(g);
   r["groups"] = groups;
-  std::string html = make_report_html(r);
-  EXPECT_EQ(count(html, "<svg"), 0u);
-  EXPECT_EQ(count(html, "<table class=\"groups\">"), 2u);
+  json view = report_view(r);
+  EXPECT_EQ(all_blocks(view, "plots").size(), 0u);
+  EXPECT_EQ(all_blocks(view, "table").size(), 2u);
 
   // VPL counts that do not vary: only the RMSE-vs-time plot.
   r = fixture();
   for (json& g : r["groups"])
     if (g["axes"].contains("vpls") && g["axes"]["vpls"] == 1000) g["axes"]["vpls"] = 10000;
-  html = make_report_html(r);
-  EXPECT_EQ(count(html, "<svg"), 2u);
-  EXPECT_EQ(count(html, "VPL count"), 0u);
+  view = report_view(r);
+  ASSERT_EQ(plots(view).size(), 2u);
+  for (const json& p : plots(view)) EXPECT_TRUE(p["title"].get<std::string>().starts_with("RMSE vs time"));
 }
 
 TEST(Report, EscapesStringsFromTheResults) {
@@ -278,10 +400,12 @@ TEST(Report, EncodesImagePathsAsRelativeUrls) {
   json r = fixture();
   r["runs"][0]["images"]["png"] = "runs/a b#c/image.png";
   r["runs"][0]["images"]["error_png"] = "javascript:alert(1)";
-  const std::string html = make_report_html(r);
-  EXPECT_TRUE(contains(html, "src=\"runs/a%20b%23c/image.png\""));
-  EXPECT_TRUE(contains(html, "src=\"javascript%3Aalert%281%29\""));
-  EXPECT_FALSE(contains(html, "javascript:"));
+  const json view = report_view(r);
+  std::vector<std::string> srcs;
+  for (const json& f : figures(view)) srcs.push_back(f["src"]);
+  EXPECT_EQ(std::count(srcs.begin(), srcs.end(), "runs/a%20b%23c/image.png"), 1);
+  EXPECT_EQ(std::count(srcs.begin(), srcs.end(), "javascript%3Aalert%281%29"), 1);
+  EXPECT_FALSE(contains(make_report_html(r), "javascript:"));
 }
 
 TEST(Report, ToleratesMissingFields) {
@@ -292,9 +416,10 @@ TEST(Report, ToleratesMissingFields) {
   r["runs"][4].erase("time_ms");
   r["groups"][1]["runs"].push_back("no-such-run");
   r.erase("references");
-  const std::string html = make_report_html(r);
-  EXPECT_TRUE(contains(html, "</html>"));
-  EXPECT_FALSE(contains(html, " \u00b1 0"));  // no "mean ± std" cell
+  const json view = report_view(r);
+  for (const json& table : all_blocks(view, "table"))
+    for (const std::string& rmse : column(table, "RMSE")) EXPECT_FALSE(contains(rmse, "\u00b1")) << rmse;
+  EXPECT_TRUE(contains(render_report(view), "</html>"));
 }
 
 TEST(Report, IsDeterministic) {
@@ -302,6 +427,76 @@ TEST(Report, IsDeterministic) {
   const std::string html = make_report_html(r);
   EXPECT_EQ(html, make_report_html(r));
   EXPECT_EQ(html, make_report_html(json::parse(r.dump())));
+}
+
+// Mustache looks a key missing from an object up in the enclosing ones (a row without a class
+// would take its table's), so every cell and figure spells out every key its template reads.
+TEST(Report, CellsAndFiguresHaveEveryKey) {
+  const json view = report_view(fixture());
+  std::vector<json> tables = all_blocks(view, "table");
+  tables.insert(tables.end(), {view["facts"], view["references"], view["runs"]["table"]});
+  const std::set<std::string> cell_keys{"text", "note", "code", "class", "title", "header"};
+  for (const json& table : tables) {
+    for (const char* key : {"class", "head", "rows", "note"}) EXPECT_TRUE(table.contains(key)) << key;
+    std::vector<json> cells = table["head"].is_null() ? std::vector<json>{} : table["head"]["cells"].get<std::vector<json>>();
+    for (const json& row : table["rows"]) {
+      EXPECT_TRUE(row.contains("class"));
+      for (const json& c : row["cells"]) cells.push_back(c);
+    }
+    for (const json& c : cells) {
+      std::set<std::string> keys;
+      for (const auto& [k, v] : c.items()) keys.insert(k);
+      EXPECT_EQ(keys, cell_keys) << c.dump();
+    }
+  }
+  const std::set<std::string> figure_keys{"src", "video", "link", "alt", "caption", "ramp", "flip", "aspect"};
+  for (const json& f : figures(view)) {
+    std::set<std::string> keys;
+    for (const auto& [k, v] : f.items()) keys.insert(k);
+    EXPECT_EQ(keys, figure_keys) << f.dump();
+  }
+}
+
+// ---- the rendered page: a smoke test of the templates, not of their markup
+
+TEST(Report, RenderedPageIsWellFormed) {
+  const json r = fixture();
+  const json view = report_view(r);
+  const std::string html = render_report(view);
+  EXPECT_TRUE(html.starts_with("<!DOCTYPE html>"));
+  EXPECT_TRUE(contains(html, "<title>sst-eval report: demo</title>"));
+  EXPECT_FALSE(contains(html, "{{"));
+  EXPECT_FALSE(contains(html, "}}"));
+  EXPECT_EQ(count(html, "<svg"), plots(view).size());
+  EXPECT_EQ(count(html, "</svg>"), plots(view).size());
+  for (const char* tag : {"table", "section", "figure", "details", "g", "text", "div", "tr"})
+    EXPECT_EQ(count(html, std::string("<") + tag + ">") + count(html, std::string("<") + tag + " "),
+              count(html, std::string("</") + tag + ">"))
+        << tag;
+  size_t pareto = 0;
+  for (const json& g : r["groups"]) pareto += g["pareto"] == true;
+  EXPECT_EQ(count(html, "<tr class=\"pareto\">"), pareto);  // the view's row classes reach the page
+  EXPECT_EQ(count(html, "<tr class="), pareto);              // and no row takes its table's class
+  EXPECT_EQ(count(html, "<img class=\"flip\""), 10u);
+}
+
+TEST(Report, PageEmbedsStyleAndScriptVerbatim) {
+  const std::string html = make_report_html(fixture());
+  for (const char* line : {".pane img, .pane video { display: block; width: 100%; image-rendering: pixelated; }",
+                           "document.querySelectorAll('.compare').forEach(function (box) {"})
+    EXPECT_TRUE(contains(html, line)) << line;
+  EXPECT_EQ(count(html, "<style>"), 1u);
+  EXPECT_EQ(count(html, "<script>"), 1u);
+}
+
+TEST(Report, VideoFiguresPlayLoopingBesideStills) {
+  json view = report_view(fixture());
+  json& grid = view["sections"][0]["blocks"].back()["images"];
+  grid["cards"][0]["figures"].push_back(video_figure("runs/0000-pt/preview.mp4", "animated", "160 / 120"));
+  const std::string html = render_report(view);
+  EXPECT_TRUE(contains(html, "<video src=\"runs/0000-pt/preview.mp4\" autoplay loop muted playsinline></video>"));
+  EXPECT_EQ(count(html, "<video"), 1u);
+  EXPECT_TRUE(contains(html, "<figcaption>animated</figcaption>"));
 }
 
 TEST(Report, WriteReportWritesReportHtmlInTheResultsFolder) {

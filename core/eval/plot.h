@@ -1,10 +1,12 @@
-// A small SVG line/scatter plot writer for the report: no plotting library is available offline,
-// and inline SVG keeps report.html a single file that any browser shows. Output is a pure
-// function of the Plot, so the same results give the same report bytes.
+// Line/scatter plots for the report, as data. plot_view() does all the arithmetic (axis ranges,
+// ticks, every pixel position) and core/eval/report/plot.svg only draws what it is given: no
+// plotting library is available offline, and inline SVG keeps report.html a single file that any
+// browser shows. The view is a pure function of the Plot, so the same results give the same report.
 #pragma once
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace sst {
@@ -42,14 +44,25 @@ struct Plot {
   int height = 400;
 };
 
-// The <svg> element. Points with a non-finite coordinate, or a non-positive one on a log axis,
-// are skipped (not drawn, not counted in the axis range). Every drawn marker has class="marker".
-std::string render_svg(const Plot& plot);
+// The plot's view model, the data plot.svg draws (keys in core/eval/README.md). Points with a
+// non-finite coordinate, or a non-positive one on a log axis, are left out (not drawn, not counted
+// in the axis range). Pixel positions are rounded to 0.1 px.
+nlohmann::json plot_view(const Plot& plot);
 
-// Points of all series (not the highlight) that render_svg would draw.
+// Points of all series (not the highlight) that plot_view draws.
 size_t drawable_point_count(const Plot& plot);
 
-// Axis ticks, for tests and for render_svg. Linear: multiples of 1, 2 or 5 x 10^k covering
+// A value per frame for each of several series (e.g. RMSE per frame, one series per method).
+struct FrameSeries {
+  std::string name;
+  std::vector<double> values;  // values[i] belongs to frame first_frame + i
+  int style = -1;              // as PlotSeries::style
+};
+
+// x = frame index (linear), y = the values on `y`'s scale, one line with markers per series.
+Plot per_frame_plot(std::string title, PlotAxis y, const std::vector<FrameSeries>& series, int first_frame = 0);
+
+// Axis ticks, for tests and for plot_view. Linear: multiples of 1, 2 or 5 x 10^k covering
 // [lo, hi] (about `target` of them, ends rounded outwards). Log: powers of ten in [lo, hi], with
 // 2 and 5 (then every digit) x 10^k added while there are fewer than three; lo > 0. A log axis
 // keeps the data range (padded a little) rather than rounding out to whole decades, which would
@@ -59,8 +72,5 @@ std::vector<double> log_ticks(double lo, double hi);
 
 // A tick label: the shortest of up to 6 significant digits, e.g. 0.3 not 0.30000000000000004.
 std::string format_tick(double value);
-
-// &, <, >, " and ' as entities: safe in XML/HTML text and attribute values.
-std::string xml_escape(std::string_view text);
 
 }  // namespace sst

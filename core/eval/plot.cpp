@@ -1,4 +1,4 @@
-#include "core/eval/svg_plot.h"
+#include "core/eval/plot.h"
 
 #include <algorithm>
 #include <array>
@@ -110,41 +110,33 @@ struct PlotArea {
   double py(double v) const { return bottom - kInset - y->fraction(v) * (bottom - top - 2 * kInset); }
 };
 
-// Builds by appending: GCC 12 warns falsely (-Wrestrict) on chains that start with a literal.
-std::string marker_shape(int shape, double cx, double cy, double r, const std::string& attrs) {
-  std::string s = shape == 0 ? "<circle " : "<path ";
-  s += attrs;
-  if (shape == 0) {
-    s.append(" cx=\"").append(num(cx)).append("\" cy=\"").append(num(cy)).append("\" r=\"").append(num(r));
-    return s += '"';
-  }
+// Pixel positions to 0.1 px: finer than a screen shows, and short in the page.
+double pixel(double v) { return std::round(v * 10.0) / 10.0; }
+
+using nlohmann::json;
+
+// A marker's position and shape: shape 0 is a circle, the others a closed path.
+json marker_view(int shape, double cx, double cy, double r) {
+  json marker = {{"circle", shape == 0}, {"cx", pixel(cx)}, {"cy", pixel(cy)}, {"r", r}, {"d", nullptr}};
+  if (shape == 0) return marker;
   // Square, triangle, diamond, inverted triangle: vertices in units of r, sized to look equal.
   static const std::vector<std::vector<std::pair<double, double>>> kVertices{{{-1, -1}, {1, -1}, {1, 1}, {-1, 1}},
                                                                              {{0, -1.2}, {1.1, 0.8}, {-1.1, 0.8}},
                                                                              {{0, -1.3}, {1.3, 0}, {0, 1.3}, {-1.3, 0}},
                                                                              {{0, 1.2}, {1.1, -0.8}, {-1.1, -0.8}}};
-  s += " d=\"";
+  std::string d;
   const auto& vertices = kVertices[size_t(shape - 1) % kVertices.size()];
   for (size_t i = 0; i < vertices.size(); ++i)
-    s.append(i ? "L" : "M")
-        .append(num(cx + vertices[i].first * r))
-        .append(",")
-        .append(num(cy + vertices[i].second * r));
-  return s += "Z\"";
+    d.append(i ? "L" : "M").append(num(cx + vertices[i].first * r)).append(",").append(num(cy + vertices[i].second * r));
+  marker["d"] = d + "Z";
+  return marker;
 }
 
-std::string polyline(const std::vector<std::pair<double, double>>& xy, const std::string& style) {
-  std::string s = "<polyline fill=\"none\" ";
-  s.append(style).append(" points=\"");
-  for (size_t i = 0; i < xy.size(); ++i)
-    s.append(i ? " " : "").append(num(xy[i].first)).append(",").append(num(xy[i].second));
-  return s += "\"/>\n";
-}
-
-std::string text(double x, double y, const std::string& anchor, const std::string& body,
-                 const std::string& extra = "") {
-  return "<text x=\"" + num(x) + "\" y=\"" + num(y) + "\" text-anchor=\"" + anchor + "\"" + extra + ">" +
-         xml_escape(body) + "</text>\n";
+// An SVG polyline's points attribute.
+std::string points_text(const std::vector<std::pair<double, double>>& xy) {
+  std::string s;
+  for (size_t i = 0; i < xy.size(); ++i) s.append(i ? " " : "").append(num(xy[i].first)).append(",").append(num(xy[i].second));
+  return s;
 }
 
 // The mantissa of v > 0 is one of `digits` (1 x 10^k, 2 x 10^k, ...).
@@ -176,24 +168,28 @@ std::vector<double> labelled_ticks(const Axis& axis, ToPixel pixel, bool horizon
   return {axis.ticks.front(), axis.ticks.back()};
 }
 
-std::string grid_and_ticks(const PlotArea& f) {
-  std::string s = "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
-  for (double t : f.x->ticks)
-    s += "<line x1=\"" + num(f.px(t)) + "\" y1=\"" + num(f.top) + "\" x2=\"" + num(f.px(t)) + "\" y2=\"" +
-         num(f.bottom) + "\"/>\n";
-  for (double t : f.y->ticks)
-    s += "<line x1=\"" + num(f.left) + "\" y1=\"" + num(f.py(t)) + "\" x2=\"" + num(f.right) + "\" y2=\"" +
-         num(f.py(t)) + "\"/>\n";
-  s += "</g>\n<rect x=\"" + num(f.left) + "\" y=\"" + num(f.top) + "\" width=\"" + num(f.right - f.left) +
-       "\" height=\"" + num(f.bottom - f.top) +
-       "\" fill=\"none\" stroke=\"#444\"/>\n<g class=\"ticks\" fill=\"#333\">\n";
-  for (double t : labelled_ticks(
-           *f.x, [&](double v) { return f.px(v); }, true))
-    s += text(f.px(t), f.bottom + 16, "middle", format_tick(t));
-  for (double t : labelled_ticks(
-           *f.y, [&](double v) { return f.py(v); }, false))
-    s += text(f.left - 6, f.py(t) + 4, "end", format_tick(t));
-  return s + "</g>\n";
+// An axis with its ticks: each at its pixel position along the axis, labelled unless labels
+// would overlap, the label's anchor just outside the frame.
+json axis_view(const PlotAxis& axis, const Axis& range, const PlotArea& f, bool is_x) {
+  auto at = [&](double v) { return is_x ? f.px(v) : f.py(v); };
+  const std::vector<double> labelled = labelled_ticks(range, at, is_x);
+  json ticks = json::array();
+  for (double t : range.ticks) {
+    const bool has_label = std::find(labelled.begin(), labelled.end(), t) != labelled.end();
+    ticks.push_back({{"value", t},
+                     {"at", pixel(at(t))},
+                     {"label", has_label ? json(format_tick(t)) : json(nullptr)},
+                     {"label_x", pixel(is_x ? at(t) : f.left - 6)},
+                     {"label_y", pixel(is_x ? f.bottom + 16 : at(t) + 4)}});
+  }
+  return {{"label", axis.label},
+          {"scale", range.scale == AxisScale::log10 ? "log10" : "linear"},
+          {"lo", range.lo},
+          {"hi", range.hi},
+          {"ticks", ticks},
+          // The axis label: centred under the frame, or rotated beside it.
+          {"label_x", pixel(is_x ? (f.left + f.right) / 2 : 16.0)},
+          {"label_y", pixel(is_x ? f.bottom + 36 : (f.top + f.bottom) / 2)}};
 }
 
 size_t style_of(const Plot& plot, size_t index) {
@@ -201,32 +197,35 @@ size_t style_of(const Plot& plot, size_t index) {
   return style >= 0 ? size_t(style) : index;
 }
 
-std::string series_svg(const Plot& plot, const PlotArea& f, size_t index) {
+const char* colour_of(size_t style) { return kPalette[style % kPalette.size()]; }
+
+json series_view(const Plot& plot, const PlotArea& f, size_t index) {
   const PlotSeries& series = plot.series[index];
   const size_t style = style_of(plot, index);
-  const std::string colour = kPalette[style % kPalette.size()];
   std::vector<std::pair<double, double>> xy;
-  std::string markers;
+  json markers = json::array();
   for (const PlotPoint& p : series.points) {
     if (!drawable(p, plot)) continue;
     xy.emplace_back(f.px(p.x), f.py(p.y));
-    const std::string tip = series.name + ": " + format_tick(p.x) + ", " + format_tick(p.y);
-    const std::string attrs = "class=\"marker\" fill=\"" + colour + "\" stroke=\"#fff\" stroke-width=\"0.8\"";
-    markers += marker_shape(int(style % kShapes), xy.back().first, xy.back().second, 4.0, attrs) + "><title>" +
-               xml_escape(tip) + "</title></" + (style % kShapes == 0 ? "circle" : "path") + ">\n";
+    json marker = marker_view(int(style % kShapes), xy.back().first, xy.back().second, 4.0);
+    marker["x"] = p.x;
+    marker["y"] = p.y;
+    marker["tip"] = series.name + ": " + format_tick(p.x) + ", " + format_tick(p.y);
+    markers.push_back(std::move(marker));
   }
-  std::string s = "<g class=\"series\">\n";
-  if (series.line && xy.size() >= 2) s += polyline(xy, "stroke=\"" + colour + "\" stroke-width=\"1.5\"");
-  return s + markers + "</g>\n";
+  const bool line = series.line && xy.size() >= 2;
+  return {{"name", series.name},
+          {"colour", colour_of(style)},
+          {"line", line ? json(points_text(xy)) : json(nullptr)},
+          {"markers", markers}};
 }
 
-std::string highlight_svg(const Plot& plot, const PlotArea& f) {
+json highlight_view(const Plot& plot, const PlotArea& f) {
   std::vector<std::pair<double, double>> xy;
   for (const PlotPoint& p : plot.highlight.points)
     if (drawable(p, plot)) xy.emplace_back(f.px(p.x), f.py(p.y));
-  if (xy.size() < 2) return "";
-  return "<g class=\"highlight\">" + polyline(xy, "stroke=\"#000\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"") +
-         "</g>\n";
+  if (xy.size() < 2) return nullptr;
+  return {{"name", plot.highlight.name}, {"line", points_text(xy)}};
 }
 
 bool has_legend_highlight(const Plot& plot) {
@@ -242,20 +241,25 @@ double legend_width(const Plot& plot) {
   return std::min(34.0 + 6.8 * double(longest), plot.width * 0.45);
 }
 
-std::string legend_svg(const Plot& plot, double x, double y) {
-  std::string s = "<g class=\"legend\">\n";
+// An entry per series, then the highlight's; each a line sample and/or a marker, and the name.
+json legend_view(const Plot& plot, double x, double y) {
+  auto entry = [&](const std::string& name, const char* colour, bool line, bool dashed, json marker) {
+    return json{{"name", name},
+                {"colour", colour},
+                {"line", line ? json(points_text({{x, y}, {x + 22, y}})) : json(nullptr)},
+                {"dashed", dashed},
+                {"marker", std::move(marker)},
+                {"text_x", pixel(x + 28)},
+                {"text_y", pixel(y + 4)}};
+  };
+  json entries = json::array();
   for (size_t i = 0; i < plot.series.size(); ++i, y += 18) {
     const size_t style = style_of(plot, i);
-    const std::string colour = kPalette[style % kPalette.size()];
-    if (plot.series[i].line) s += polyline({{x, y}, {x + 22, y}}, "stroke=\"" + colour + "\" stroke-width=\"1.5\"");
-    s += marker_shape(int(style % kShapes), x + 11, y, 4.0, "class=\"legend-marker\" fill=\"" + colour + "\"") + "/>\n";
-    s += text(x + 28, y + 4, "start", plot.series[i].name);
+    entries.push_back(entry(plot.series[i].name, colour_of(style), plot.series[i].line, false,
+                            marker_view(int(style % kShapes), x + 11, y, 4.0)));
   }
-  if (has_legend_highlight(plot)) {
-    s += polyline({{x, y}, {x + 22, y}}, "stroke=\"#000\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"");
-    s += text(x + 28, y + 4, "start", plot.highlight.name);
-  }
-  return s + "</g>\n";
+  if (has_legend_highlight(plot)) entries.push_back(entry(plot.highlight.name, "#000", true, true, nullptr));
+  return {{"entries", entries}};
 }
 
 std::string tidy_exponent(const std::string& s) {
@@ -317,34 +321,6 @@ std::string format_tick(double value) {
   return fixed ? std::string(buf) : tidy_exponent(buf);
 }
 
-std::string xml_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        // Control characters are not allowed in XML 1.0; a label never needs them.
-        out += (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n') ? ' ' : c;
-    }
-  }
-  return out;
-}
-
 size_t drawable_point_count(const Plot& plot) {
   size_t n = 0;
   for (const PlotSeries& s : plot.series)
@@ -352,24 +328,41 @@ size_t drawable_point_count(const Plot& plot) {
   return n;
 }
 
-std::string render_svg(const Plot& plot) {
+json plot_view(const Plot& plot) {
   const Axis x = axis_of(plot, true), y = axis_of(plot, false);
   const double legend = legend_width(plot);
   const PlotArea f{68.0, plot.title.empty() ? 14.0 : 34.0, plot.width - 16.0 - legend, plot.height - 46.0, &x, &y};
-  const std::string w = std::to_string(plot.width), h = std::to_string(plot.height);
-  std::string s = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"plot\" width=\"" + w + "\" height=\"" + h +
-                  "\" viewBox=\"0 0 " + w + " " + h + "\" font-family=\"sans-serif\" font-size=\"12\">\n";
-  s += "<rect width=\"" + w + "\" height=\"" + h + "\" fill=\"#fff\"/>\n";
-  if (!plot.title.empty())
-    s += text((f.left + f.right) / 2, 20, "middle", plot.title, " font-size=\"14\" font-weight=\"bold\"");
-  s += grid_and_ticks(f);
-  s += text((f.left + f.right) / 2, plot.height - 10.0, "middle", plot.x.label);
-  const double ly = (f.top + f.bottom) / 2;
-  s += text(16, ly, "middle", plot.y.label, " transform=\"rotate(-90 16 " + num(ly) + ")\"");
-  for (size_t i = 0; i < plot.series.size(); ++i) s += series_svg(plot, f, i);
-  s += highlight_svg(plot, f);
-  if (legend > 0) s += legend_svg(plot, f.right + 12, f.top + 8);
-  return s + "</svg>\n";
+  json series = json::array();
+  for (size_t i = 0; i < plot.series.size(); ++i) series.push_back(series_view(plot, f, i));
+  return {{"title", plot.title.empty() ? json(nullptr) : json(plot.title)},
+          {"title_x", pixel((f.left + f.right) / 2)},
+          {"width", plot.width},
+          {"height", plot.height},
+          {"frame",
+           {{"left", pixel(f.left)},
+            {"top", pixel(f.top)},
+            {"right", pixel(f.right)},
+            {"bottom", pixel(f.bottom)},
+            {"width", pixel(f.right - f.left)},
+            {"height", pixel(f.bottom - f.top)}}},
+          {"x_axis", axis_view(plot.x, x, f, true)},
+          {"y_axis", axis_view(plot.y, y, f, false)},
+          {"series", series},
+          {"highlight", highlight_view(plot, f)},
+          {"legend", legend > 0 ? legend_view(plot, f.right + 12, f.top + 8) : json(nullptr)}};
+}
+
+Plot per_frame_plot(std::string title, PlotAxis y, const std::vector<FrameSeries>& series, int first_frame) {
+  Plot plot;
+  plot.title = std::move(title);
+  plot.x = {"frame", AxisScale::linear};
+  plot.y = std::move(y);
+  for (const FrameSeries& s : series) {
+    PlotSeries line{s.name, {}, true, s.style};
+    for (size_t i = 0; i < s.values.size(); ++i) line.points.push_back({double(first_frame) + double(i), s.values[i]});
+    plot.series.push_back(std::move(line));
+  }
+  return plot;
 }
 
 }  // namespace sst

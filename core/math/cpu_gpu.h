@@ -14,8 +14,9 @@
 //   literals a u, so that C++ never computes in double. No swizzles (sst builds glm with
 //   GLM_FORCE_XYZW_ONLY); v.x or v[i].
 // - Built-ins with GLSL's names: abs, min, max, clamp, sqrt, floor, dot, cross, length, normalize,
-//   floatBitsToUint, uintBitsToFloat, bitfieldReverse, findMSB, isnan, isinf (glm provides most
-//   of them in C++).
+//   floatBitsToUint, uintBitsToFloat, bitfieldReverse, findMSB, isnan, isinf, exp, pow (glm and
+//   <cmath> provide most of them in C++). exp and pow are the drivers' own, so a kernel using them
+//   agrees across backends to a few ulps, not to the bit (the filters, core/filter, need no more).
 // - Arithmetic whose bits matter is written into SST_PRECISE temporaries: GLSL's `precise`
 //   forbids the driver to fuse a*b+c; C++ is built with -ffp-contract=off for the same reason.
 // - Constants at file scope: SST_CONSTANT float kName = 1.0f;
@@ -48,6 +49,8 @@ using glm::floor;
 using glm::max;
 using glm::min;
 using glm::uintBitsToFloat;
+using std::exp;
+using std::pow;
 using std::sqrt;
 // GLSL's abs: +0 for -0, and no branch (glm's scalar abs is x >= 0 ? x : -x, a branch that random
 // signs mispredict).

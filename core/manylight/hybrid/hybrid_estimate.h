@@ -9,6 +9,7 @@
 #define SST_CORE_MANYLIGHT_HYBRID_HYBRID_ESTIMATE_H
 #include "core/lighttree/box_bounds.h"
 #include "core/math/accurate_math.h"
+#include "core/math/geometric_similarity.h"
 #include "core/manylight/estimator.h"
 
 SST_BEGIN
@@ -107,8 +108,8 @@ SST_FUNC IndirectEstimate estimate_hybrid(ML_CTX_PARAM SST_IN(ShadingPoint) sp, 
     blocks[c] = uint(cy) * ML_PARAMS.cut_blocks_x + uint(cx);
     CutGuide g = ML_CUT_GUIDE(blocks[c]);
     SST_PRECISE vec3 to_guide = sp.p - g.p;
-    bool similar = g.valid != 0u && dot3(g.n, sp.basis.n) > ML_PARAMS.hybrid_n_min &&
-                   length3(to_guide) < ML_PARAMS.hybrid_d_max_abs;
+    bool similar = g.valid != 0u && geometrically_similar(g.n, sp.basis.n, length3(to_guide), ML_PARAMS.hybrid_n_min,
+                                                          ML_PARAMS.hybrid_d_max_abs);
     SST_PRECISE float wx = (c & 1) != 0 ? tx : 1.0f - tx;
     SST_PRECISE float wy = (c >> 1) != 0 ? ty : 1.0f - ty;
     SST_PRECISE float bilinear = wx * wy;

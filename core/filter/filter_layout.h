@@ -44,7 +44,7 @@ struct UpsamplePush {
   uint height;
   uint low_width;
   uint low_height;
-  uint scale;
+  uint pad1;
   float n_min;
   float d_max;  // relative to the full-resolution pixel's depth
   uint pad0;
@@ -53,7 +53,7 @@ struct UpsamplePush {
 #ifdef __cplusplus
 static_assert(sizeof(AtrousPush) == 32 && offsetof(AtrousPush, inv_color) == 16);
 static_assert(sizeof(SvgfPush) == 32 && offsetof(SvgfPush, sigma_z) == 16);
-static_assert(sizeof(UpsamplePush) == 32 && offsetof(UpsamplePush, scale) == 16);
+static_assert(sizeof(UpsamplePush) == 32 && offsetof(UpsamplePush, n_min) == 20);
 }  // namespace sst::glsl
 #endif
 

@@ -42,8 +42,6 @@ void validate(const SvgfParams& params) {
 }
 
 void validate(const UpsampleParams& params) {
-  if (params.scale < 1 || params.scale > 64)
-    throw Error("upsample: scale = " + std::to_string(params.scale) + " is outside 1..64");
   if (!(params.n_min >= -1.0f && params.n_min <= 1.0f))
     throw Error("upsample: n_min = " + std::to_string(params.n_min) + " is outside -1..1");
   check_positive("upsample", "d_max", params.d_max);
@@ -80,7 +78,6 @@ glsl::UpsamplePush upsample_push(const UpsampleParams& params, int width, int he
   p.height = uint32_t(height);
   p.low_width = uint32_t(low_width);
   p.low_height = uint32_t(low_height);
-  p.scale = uint32_t(params.scale);
   p.n_min = params.n_min;
   p.d_max = params.d_max;
   return p;

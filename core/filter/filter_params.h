@@ -16,12 +16,12 @@ struct AtrousParams {
 
   template <class V>
   void visit(V&& v) {
-    v("levels", levels, "a-trous passes; pass i spaces its 5x5 taps 2^i pixels apart (0: no filtering)");
-    v("sigma_color", sigma_color,
+    v("atrous_levels", levels, "a-trous passes; pass i spaces its 5x5 taps 2^i pixels apart (0: no filtering)");
+    v("atrous_sigma_color", sigma_color,
       "colour edge-stopping: RGB distance at which a tap's weight falls to 1/e at the first pass (halved in "
       "variance each pass, as Dammertz et al.)");
-    v("sigma_normal", sigma_normal, "normal edge-stopping: distance between unit normals at which a tap's weight falls to 1/e");
-    v("sigma_depth", sigma_depth,
+    v("atrous_sigma_normal", sigma_normal, "normal edge-stopping: distance between unit normals at which a tap's weight falls to 1/e");
+    v("atrous_sigma_depth", sigma_depth,
       "depth edge-stopping: depth difference, as a fraction of the pixel's depth, at which a tap's weight falls to 1/e");
   }
 };
@@ -38,11 +38,11 @@ struct SvgfParams {
 
   template <class V>
   void visit(V&& v) {
-    v("levels", levels, "a-trous passes; pass i spaces its 5x5 taps 2^i pixels apart (0: no filtering)");
-    v("sigma_z", sigma_z, "depth edge-stopping: tolerance in units of the depth change the local depth gradient predicts");
-    v("sigma_n", sigma_n, "normal edge-stopping: exponent of the cosine between the normals");
-    v("sigma_l", sigma_l, "luminance edge-stopping: tolerance in standard deviations of the pixel's luminance");
-    v("min_history", min_history,
+    v("svgf_levels", levels, "a-trous passes; pass i spaces its 5x5 taps 2^i pixels apart (0: no filtering)");
+    v("svgf_sigma_z", sigma_z, "depth edge-stopping: tolerance in units of the depth change the local depth gradient predicts");
+    v("svgf_sigma_n", sigma_n, "normal edge-stopping: exponent of the cosine between the normals");
+    v("svgf_sigma_l", sigma_l, "luminance edge-stopping: tolerance in standard deviations of the pixel's luminance");
+    v("svgf_min_history", min_history,
       "frames of history from which the temporal moments give the variance; below it a 7x7 bilateral spatial "
       "estimate of the moments does");
   }
@@ -52,15 +52,13 @@ struct SvgfParams {
 // nearest low-resolution texels bilinearly, keeping only those geometrically similar to it
 // (core/math/geometric_similarity.h, with the depth difference as the distance).
 struct UpsampleParams {
-  int scale = 2;
   float n_min = 0.9f;
   float d_max = 0.05f;
 
   template <class V>
   void visit(V&& v) {
-    v("scale", scale, "full-resolution pixels per low-resolution texel along each axis");
-    v("n_min", n_min, "a texel is used only if the cosine between its normal and the pixel's is > n_min");
-    v("d_max", d_max,
+    v("upsample_n_min", n_min, "a texel is used only if the cosine between its normal and the pixel's is > n_min");
+    v("upsample_d_max", d_max,
       "a texel is used only if its depth differs from the pixel's by less than d_max x the pixel's depth (the "
       "thesis's d_max, made relative so that it holds at any scene scale); with no such texel the pixel takes "
       "the texel of nearest depth");

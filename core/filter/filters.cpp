@@ -58,14 +58,12 @@ void check_svgf_inputs(const Image& illumination, const Image& moments, const Im
 void check_upsample_inputs(const Image& low, const Image& low_depth, const Image& low_normal, const Image& depth,
                            const Image& normal, const UpsampleParams& params) {
   validate(params);
-  const int width = depth.width, height = depth.height, s = params.scale;
+  const int width = depth.width, height = depth.height;
   check_gbuffer(width, height, depth, normal);
-  // The low-resolution size is width / scale rounded either way.
-  auto fits = [s](int low_size, int size) { return low_size >= size / s && low_size <= (size + s - 1) / s; };
-  if (!fits(low.width, width) || !fits(low.height, height) || (low.pixel_count() == 0) != (depth.pixel_count() == 0))
+  auto fits = [](int low_size, int size) { return low_size >= 1 && low_size <= size; };
+  if (!fits(low.width, width) || !fits(low.height, height))
     throw Error("upsample: the low-resolution image is " + std::to_string(low.width) + "x" +
-                std::to_string(low.height) + ", not " + std::to_string(width) + "x" + std::to_string(height) +
-                " / scale " + std::to_string(s));
+                std::to_string(low.height) + ", not at most " + std::to_string(width) + "x" + std::to_string(height));
   check_filter_image(low, low.width, low.height, 3, "low-resolution color");
   check_gbuffer(low.width, low.height, low_depth, low_normal);
 }

@@ -27,13 +27,14 @@ struct SvgfSpatialResult {
 SvgfSpatialResult svgf_spatial(const Image& illumination, const Image& moments, const Image& history_length,
                                const Image& depth, const Image& normal, const SvgfParams& params);
 
-// `low` (RGB) and its G-buffer `low_depth`, `low_normal` at 1/scale of the resolution of `depth` and
-// `normal` (width ceil or floor of width / scale, likewise height) to that full resolution.
+// `low` (RGB) and its G-buffer `low_depth`, `low_normal`, rendered at a lower resolution of the same
+// view (any size up to that of `depth` and `normal`), to the full resolution.
 Image joint_bilateral_upsample(const Image& low, const Image& low_depth, const Image& low_normal, const Image& depth,
                                const Image& normal, const UpsampleParams& params);
 
-// light / max(albedo, 1e-3) and its inverse (filter_albedo_divisor): what SVGF filters and how the
-// result becomes light again; finite for black albedo.
+// light / albedo and its inverse, per channel, leaving channels of albedo below 1e-3 undivided
+// (filter_albedo_divisor): what the filters and temporal reuse smooth, and how the result becomes
+// light again; finite for black albedo.
 Image demodulate(const Image& light, const Image& albedo);
 Image remodulate(const Image& illumination, const Image& albedo);
 

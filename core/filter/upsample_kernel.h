@@ -8,8 +8,8 @@
 
 SST_BEGIN
 
-// The bilinear blend of the four low-resolution texels around the pixel (centres at (t + 0.5) scale,
-// clamped at the border), keeping only those whose surface is geometrically similar to the pixel's;
+// The bilinear blend of the four low-resolution texels around the pixel (clamped at the border),
+// keeping only those whose surface is geometrically similar to the pixel's;
 // a pixel without a surface blends texels without one. With none similar (thin geometry, a
 // silhouette between texels) the pixel takes the texel of nearest depth: a real neighbouring value,
 // never a hole.
@@ -18,9 +18,10 @@ SST_FUNC vec3 upsample_pixel(FILTER_CTX_PARAM SST_IN(UpsamplePush) p, int x, int
   float z = FILTER_DEPTH(i);
   vec3 n = FILTER_NORMAL(i);
   bool surface = filter_has_surface(z);
-  float scale = float(p.scale);
-  float fx = (float(x) + 0.5f) / scale - 0.5f;
-  float fy = (float(y) + 0.5f) / scale - 0.5f;
+  // Texel centres in pixel units: the low-resolution image spans the same view, whatever rounding
+  // made its size.
+  SST_PRECISE float fx = (float(x) + 0.5f) * (float(p.low_width) / float(p.width)) - 0.5f;
+  SST_PRECISE float fy = (float(y) + 0.5f) * (float(p.low_height) / float(p.height)) - 0.5f;
   int bx = int(floor(fx));
   int by = int(floor(fy));
   float tx = fx - float(bx);

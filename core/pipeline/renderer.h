@@ -51,6 +51,8 @@ class FrameRenderer {
 
   const RenderOptions& options() const { return options_; }  // resolved: backend, accel
   const EmbreeAccel& accel() const { return *accel_; }
+  // The device and uploads of a Vulkan render (null on the CPU backend).
+  const gpu::GpuRenderContext* gpu() const { return gpu_.get(); }
 
  private:
   RenderResult render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& method_name,

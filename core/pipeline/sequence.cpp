@@ -1,12 +1,19 @@
 #include "core/pipeline/sequence.h"
 
-#include <tbb/parallel_for.h>
+#include <chrono>
 
+#include "core/filter/filters.h"
 #include "core/render/camera.h"
 #include "core/render/centre_gbuffer.h"
 #include "core/rng/hash_rng.h"
 #include "core/temporal/temporal_reuse.h"
 #include "core/util/error.h"
+
+#ifdef SST_HAVE_VULKAN
+#include "gpu/filter_pass.h"
+#include "gpu/gpu_render_context.h"
+#include "gpu/temporal_pass.h"
+#endif
 
 namespace sst {
 
@@ -17,21 +24,78 @@ uint32_t frame_seed(uint32_t seed, int index) {
 
 namespace {
 
-// Illumination back to radiance: the inverse of the demodulation of temporal_inputs.
-Image remodulate(const Image& illumination, const Image& albedo) {
-  Image out(illumination.width, illumination.height, 3);
-  tbb::parallel_for(0, illumination.height, [&](int y) {
-    for (int x = 0; x < illumination.width; ++x)
-      out.set_rgb(x, y, illumination.rgb(x, y) * demodulation_albedo(albedo.rgb(x, y)));
-  });
-  return out;
-}
-
 Image sum(const Image& a, const Image& b) {
   Image out = a;
   for (size_t i = 0; i < out.data.size(); ++i) out.data[i] += b.data[i];
   return out;
 }
+
+void add_stages(StageTimer& to, const StageTimer& from, const std::string& prefix = "") {
+  for (const auto& [stage, ms] : from.stages()) to.add(prefix + stage, ms);
+}
+
+// The post-processing stages on the backend the frame rendered on: the Vulkan ones run the same
+// kernels as the CPU's (gpu/temporal_pass.h, gpu/filter_pass.h). A stage's time is the GPU time of
+// its dispatches on Vulkan (the uploads and readbacks around them go to "<stage>_transfer": they
+// exist only because the frame comes back to the CPU between stages) and the wall time on the CPU.
+class PostStages {
+ public:
+  PostStages(const FrameRenderer& renderer, StageTimer& timer) : renderer_(renderer), timer_(timer) {}
+
+  // Defined before its callers: they deduce their return type from it.
+  template <class F>
+  auto on_gpu(const std::string& stage, F&& f) {
+    auto start = std::chrono::steady_clock::now();
+    auto result = f();
+    double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    timer_.add(stage, result.gpu_ms);
+    timer_.add(stage + "_transfer", std::max(0.0, wall - result.gpu_ms));
+    return result;
+  }
+
+
+  std::vector<TemporalTexel> temporal(const std::vector<TemporalInput>& input,
+                                      const std::vector<TemporalTexel>& history, const TemporalPush& push) {
+#ifdef SST_HAVE_VULKAN
+    if (const gpu::GpuRenderContext* g = renderer_.gpu())
+      return on_gpu("temporal", [&] { return gpu::temporal_accumulate(g->vulkan(), input, history, push); }).texels;
+#endif
+    return timer_.time("temporal", [&] { return temporal_accumulate(input, history, push); });
+  }
+
+  Image atrous(const Image& color, const Image& depth, const Image& normal, const AtrousParams& p) {
+#ifdef SST_HAVE_VULKAN
+    if (const gpu::GpuRenderContext* g = renderer_.gpu())
+      return on_gpu("denoise", [&] { return gpu::atrous_filter(g->vulkan(), color, depth, normal, p); }).image;
+#endif
+    return timer_.time("denoise", [&] { return atrous_filter(color, depth, normal, p); });
+  }
+
+  SvgfSpatialResult svgf(const TemporalImages& t, const Image& depth, const Image& normal, const SvgfParams& p) {
+#ifdef SST_HAVE_VULKAN
+    if (const gpu::GpuRenderContext* g = renderer_.gpu())
+      return on_gpu("denoise", [&] {
+        return gpu::svgf_spatial(g->vulkan(), t.illumination, t.moments, t.frames, depth, normal, p);
+      });
+#endif
+    return timer_.time("denoise", [&] { return svgf_spatial(t.illumination, t.moments, t.frames, depth, normal, p); });
+  }
+
+  Image upsample(const Image& low, const CentreGBuffer& low_g, const CentreGBuffer& g, const UpsampleParams& p) {
+#ifdef SST_HAVE_VULKAN
+    if (const gpu::GpuRenderContext* gc = renderer_.gpu())
+      return on_gpu("upsample", [&] {
+               return gpu::joint_bilateral_upsample(gc->vulkan(), low, low_g.depth, low_g.normal, g.depth, g.normal, p);
+             }).image;
+#endif
+    return timer_.time("upsample",
+                       [&] { return joint_bilateral_upsample(low, low_g.depth, low_g.normal, g.depth, g.normal, p); });
+  }
+
+ private:
+  const FrameRenderer& renderer_;
+  StageTimer& timer_;
+};
 
 // The state one frame hands the next.
 struct History {
@@ -51,62 +115,110 @@ class SequenceRunner {
     resolve_resolution(scene.cameras[size_t(camera_index_)], options_.width, options_.height);
     validate(options_);
     reuse_ = options_.temporal || options_.denoise == "svgf";
-    gbuffer_ = reuse_ || options_.frames > 1;
-    if (options_.denoise != "none") throw Error("denoise '" + options_.denoise + "' is not available yet");
-    if (options_.indirect_scale > 1) throw Error("indirect_scale > 1 is not available yet");
+    gbuffer_ = reuse_ || options_.frames > 1 || options_.denoise != "none" || options_.indirect_scale > 1;
   }
 
   SequenceFrame frame(int position) {
     SequenceFrame out;
     out.index = options_.frame_start + position;
     out.time = double(out.index) / double(options_.fps);
-    StageTimer setup;
+    StageTimer timer;
     bool lights_moved = apply_key_frame_paths(paths_, scene_, out.time);
-    if (position == 0 || lights_moved) renderer_.prepare(scene_, setup);
+    if (position == 0 || lights_moved) renderer_.prepare(scene_, timer);
     const Camera& camera = scene_.cameras[size_t(camera_index_)];
-    uint32_t seed = frame_seed(options_.seed, out.index);
-    out.result = renderer_.render(scene_, camera, seed, options_.width, options_.height);
-    StageTimer timer = setup;
-    for (const auto& [stage, ms] : out.result.timer.stages()) timer.add(stage, ms);
-    post_process(out.result, timer, camera);
-    out.result.timer = timer;
-    out.result.options = options_;
-    out.result.options.seed = seed;
-    return out;
-  }
-
- private:
-  void post_process(RenderResult& result, StageTimer& timer, const Camera& camera) {
-    FrameOutput& f = result.frame;
-    const int w = f.color.width, h = f.color.height;
+    const uint32_t seed = frame_seed(options_.seed, out.index);
+    const int w = options_.width, h = options_.height;
     glsl::ViewParams view = view_params(PinholeCamera(camera, w, h), w, h, 0);
     if (!history_.valid) {
       history_.positions = scene_.positions;
       history_.view = view;
     }
-    if (gbuffer_) {
-      CentreGBuffer g = timer.time("gbuffer", [&] {
-        return centre_gbuffer(renderer_.accel(), scene_, history_.positions, view, history_.view);
-      });
-      if (reuse_) {
-        std::vector<TemporalInput> input =
-            temporal_inputs(f.direct, f.indirect, g.albedo, g.depth, g.normal, g.motion, g.previous_depth);
-        TemporalPush push = temporal_push(options_.temporal_params, w, h);
-        history_.temporal = timer.time("temporal", [&] { return temporal_accumulate(input, history_.temporal, push); });
-        Image direct = temporal_images(history_.temporal, w, h, true).illumination;
-        Image indirect = temporal_images(history_.temporal, w, h, false).illumination;
-        f.extra_layers.push_back({"raw", f.color});
-        f.direct = remodulate(direct, g.albedo);
-        f.indirect = remodulate(indirect, g.albedo);
-        f.color = sum(f.direct, f.indirect);
-      }
-      f.extra_layers.push_back({"motion", g.motion});
+    CentreGBuffer g;
+    if (gbuffer_)
+      g = timer.time("gbuffer",
+                     [&] { return centre_gbuffer(renderer_.accel(), scene_, history_.positions, view, history_.view); });
+    PostStages post(renderer_, timer);
+    if (options_.indirect_scale > 1) {
+      out.result = render_split(camera, seed, g, timer, post);
+    } else {
+      out.result = renderer_.render(scene_, camera, seed, w, h);
+      add_stages(timer, out.result.timer);
     }
+    if (gbuffer_) post_process(out.result.frame, g, post);
+    out.result.timer = timer;
+    out.result.options = options_;
+    out.result.options.seed = seed;
     history_.valid = true;
     history_.view = view;
     // Only animated geometry changes the vertices; a static scene's stay those of the first frame.
-    if (scene_.positions.size() != history_.positions.size() || scene_.positions != history_.positions)
-      history_.positions = scene_.positions;
+    if (scene_.positions != history_.positions) history_.positions = scene_.positions;
+    return out;
+  }
+
+ private:
+  // A frame whose indirect light renders at 1/indirect_scale of the resolution: the direct light at
+  // full resolution (the path tracer without bounces: every method's direct pass), the method at
+  // low resolution for its indirect light, which joint bilateral upsampling brings to full
+  // resolution, guided by the two frames' pixel-centre G-buffers. Its stages: the direct render's
+  // as "direct_<stage>", the method's own, "gbuffer_low" and "upsample".
+  RenderResult render_split(const Camera& camera, uint32_t seed, const CentreGBuffer& g, StageTimer& timer,
+                            PostStages& post) {
+    const int s = options_.indirect_scale;
+    const int lw = std::max(1, options_.width / s), lh = std::max(1, options_.height / s);
+    RenderResult full = renderer_.render_direct(scene_, camera, seed);
+    add_stages(timer, full.timer, "direct_");
+    RenderResult low = renderer_.render(scene_, camera, seed, lw, lh);
+    add_stages(timer, low.timer);
+    glsl::ViewParams low_view = view_params(PinholeCamera(camera, lw, lh), lw, lh, 0);
+    CentreGBuffer low_g = timer.time("gbuffer_low", [&] {
+      return centre_gbuffer(renderer_.accel(), scene_, scene_.positions, low_view, low_view);
+    });
+    Image up = post.upsample(demodulate(low.frame.indirect, low_g.albedo), low_g, g, options_.upsample);
+    RenderResult result = std::move(full);
+    result.method_params = low.method_params;
+    result.frame.indirect = remodulate(up, g.albedo);
+    result.frame.color = sum(result.frame.direct, result.frame.indirect);
+    result.frame.counters += low.frame.counters;
+    result.frame.method_counters = low.frame.method_counters;
+    result.frame.extra_layers.clear();
+    return result;
+  }
+
+  // Temporal reuse and denoising of the frame's light, in place; the frame keeps its unfiltered
+  // image as the layer "raw" and gains "motion".
+  void post_process(FrameOutput& f, const CentreGBuffer& g, PostStages& post) {
+    const int w = f.color.width, h = f.color.height;
+    Image raw = f.color;
+    Image direct, indirect;
+    TemporalImages indirect_history;
+    if (reuse_) {
+      std::vector<TemporalInput> input =
+          temporal_inputs(f.direct, f.indirect, g.albedo, g.depth, g.normal, g.motion, g.previous_depth);
+      history_.temporal = post.temporal(input, history_.temporal, temporal_push(options_.temporal_params, w, h));
+      direct = temporal_images(history_.temporal, w, h, true).illumination;
+      indirect_history = temporal_images(history_.temporal, w, h, false);
+      indirect = indirect_history.illumination;
+    } else {
+      direct = demodulate(f.direct, g.albedo);
+      indirect = demodulate(f.indirect, g.albedo);
+    }
+    if (options_.denoise == "atrous") {
+      indirect = post.atrous(indirect, g.depth, g.normal, options_.atrous);
+    } else if (options_.denoise == "svgf") {
+      SvgfSpatialResult s = post.svgf(indirect_history, g.depth, g.normal, options_.svgf);
+      indirect = s.filtered;
+      // SVGF's feedback: the history continues from the first a-trous level's output.
+      for (size_t i = 0; i < history_.temporal.size(); ++i)
+        history_.temporal[i].indirect = s.level1.rgb(int(i % size_t(w)), int(i / size_t(w)));
+      f.extra_layers.push_back({"variance", s.variance});
+    }
+    if (reuse_ || options_.denoise != "none") {
+      f.direct = remodulate(direct, g.albedo);
+      f.indirect = remodulate(indirect, g.albedo);
+      f.color = sum(f.direct, f.indirect);
+      f.extra_layers.push_back({"raw", raw});
+    }
+    f.extra_layers.push_back({"motion", g.motion});
   }
 
   Scene& scene_;

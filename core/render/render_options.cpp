@@ -22,6 +22,9 @@ void validate(const RenderOptions& o) {
   if (o.frame_start < 0) throw Error("frame_start must be >= 0 (got " + std::to_string(o.frame_start) + ")");
   if (!(o.fps > 0.0f) || !std::isfinite(o.fps)) throw Error("fps must be finite and > 0");
   validate(o.temporal_params);
+  validate(o.atrous);
+  validate(o.svgf);
+  validate(o.upsample);
   if (o.denoise != "none" && o.denoise != "atrous" && o.denoise != "svgf")
     throw Error("unknown denoise '" + o.denoise + "' (valid: " + denoiser_names() + ")");
   if (o.indirect_scale < 1 || o.indirect_scale > 16)

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/filter/filter_params.h"
 #include "core/temporal/temporal_reuse.h"
 
 namespace sst {
@@ -28,7 +29,10 @@ struct RenderOptions {
   bool temporal = false;
   TemporalParams temporal_params;
   std::string denoise = "none";
+  AtrousParams atrous;
+  SvgfParams svgf;
   int indirect_scale = 1;
+  UpsampleParams upsample;
 
   template <class V>
   void visit(V&& v) {
@@ -50,9 +54,13 @@ struct RenderOptions {
     v("temporal", temporal, "temporal reuse: reproject each pixel's history with motion vectors and accumulate");
     temporal_params.visit(v);
     v("denoise", denoise,
-      "none, atrous (edge-avoiding a-trous, Dammertz 2010) or svgf (Schied 2017; accumulates temporally itself)");
+      "filter the indirect light: none, atrous (edge-avoiding a-trous, Dammertz 2010) or svgf (Schied 2017; "
+      "accumulates temporally itself)");
+    atrous.visit(v);
+    svgf.visit(v);
     v("indirect_scale", indirect_scale,
       "render indirect light at 1/scale of the resolution and upsample it (joint bilateral, thesis ch. 6)");
+    upsample.visit(v);
   }
 };
 

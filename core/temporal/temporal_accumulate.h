@@ -34,7 +34,7 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
   vec3 direct = vec3(0.0f, 0.0f, 0.0f);
   vec3 indirect = vec3(0.0f, 0.0f, 0.0f);
   vec4 moments = vec4(0.0f, 0.0f, 0.0f, 0.0f);
-  float length = 0.0f;
+  float frames = 0.0f;
   float weight_sum = 0.0f;
   if (c.depth > 0.0f && c.previous_depth > 0.0f) {
     // Pixel centres sit at +0.5: the tap grid starts half a pixel before the reprojected centre.
@@ -59,7 +59,7 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
       direct += wd;
       indirect += wi;
       moments += wm;
-      length += h.length * w;
+      frames += h.frames * w;
       weight_sum += w;
     }
   }
@@ -69,24 +69,24 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
     direct = direct * inv;
     indirect = indirect * inv;
     moments = moments * inv;
-    length = length * inv;
+    frames = frames * inv;
   } else {
-    length = 0.0f;
+    frames = 0.0f;
   }
-  float n = min(length + 1.0f, push.history_cap);
+  float n = min(frames + 1.0f, push.history_cap);
   SST_PRECISE float alpha = 1.0f / n;
-  TemporalTexel out;
+  TemporalTexel result;
   SST_PRECISE vec3 d = direct + (c.direct - direct) * alpha;
   SST_PRECISE vec3 i = indirect + (c.indirect - indirect) * alpha;
   SST_PRECISE vec4 m = moments + (temporal_moments(c.direct, c.indirect) - moments) * alpha;
-  out.direct = d;
-  out.indirect = i;
-  out.moments = m;
-  out.length = n;
-  out.depth = c.depth;
-  out.normal = c.normal;
-  out.pad0 = 0.0f;
-  return out;
+  result.direct = d;
+  result.indirect = i;
+  result.moments = m;
+  result.frames = n;
+  result.depth = c.depth;
+  result.normal = c.normal;
+  result.pad0 = 0.0f;
+  return result;
 }
 
 SST_END

@@ -32,7 +32,7 @@ struct TemporalInput {
 // One pixel's history after the current frame has been added.
 struct TemporalTexel {
   vec3 direct;    // exponential averages of the illuminations
-  float length;   // frames in the averages (fractional where taps of different histories blend), <= cap
+  float frames;   // frames in the averages (fractional where taps of different histories blend), <= cap
   vec3 indirect;
   float depth;    // the frame's depth and normal, against which the next frame tests its reprojection
   vec3 normal;
@@ -43,7 +43,7 @@ struct TemporalTexel {
 struct TemporalPush {
   uint width;
   uint height;
-  float history_cap;      // the most frames an average holds: alpha = 1 / min(length + 1, cap)
+  float history_cap;      // the most frames an average holds: alpha = 1 / min(frames + 1, cap)
   float depth_tolerance;  // a history tap is kept when its depth is within this fraction of the expected
   float normal_cos;       // ... and the cosine between its normal and the current one is at least this
   uint pad0;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "core/filter/filters.h"
 #include "core/util/error.h"
 
 #define TEMPORAL_CTX_PARAM const ::sst::TemporalTexel *history,
@@ -19,22 +20,16 @@ void validate(const TemporalParams& p) {
   if (!(p.normal_cos >= -1.0f && p.normal_cos <= 1.0f)) throw Error("normal_cos must be in [-1, 1]");
 }
 
-vec3 demodulation_albedo(vec3 albedo) {
-  vec3 a;
-  for (int k = 0; k < 3; ++k) a[k] = albedo[k] >= 1e-3f ? albedo[k] : 1.0f;
-  return a;
-}
-
 std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& indirect, const Image& albedo,
                                            const Image& depth, const Image& normal, const Image& motion,
                                            const Image& previous_depth) {
+  const Image direct_illumination = demodulate(direct, albedo), indirect_illumination = demodulate(indirect, albedo);
   std::vector<TemporalInput> in(direct.pixel_count());
   tbb::parallel_for(0, direct.height, [&](int y) {
     for (int x = 0; x < direct.width; ++x) {
       TemporalInput& t = in[size_t(y) * direct.width + x];
-      vec3 a = demodulation_albedo(albedo.rgb(x, y));
-      t.direct = direct.rgb(x, y) / a;
-      t.indirect = indirect.rgb(x, y) / a;
+      t.direct = direct_illumination.rgb(x, y);
+      t.indirect = indirect_illumination.rgb(x, y);
       t.depth = depth.at(x, y, 0);
       t.previous_depth = previous_depth.at(x, y, 0);
       t.normal = normal.rgb(x, y);
@@ -81,7 +76,7 @@ TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int wi
     for (int k = 0; k < 3; ++k) out.illumination.data[3 * i + k] = c[k];
     out.moments.data[2 * i] = direct ? t.moments.x : t.moments.z;
     out.moments.data[2 * i + 1] = direct ? t.moments.y : t.moments.w;
-    out.length.data[i] = t.length;
+    out.frames.data[i] = t.frames;
   }
   return out;
 }

@@ -26,12 +26,9 @@ struct TemporalParams {
 
 void validate(const TemporalParams& params);
 
-// The albedo a radiance is divided by to give illumination: channels below 1e-3 (black or nearly
-// black surfaces, misses) are left undivided, so that demodulation never amplifies noise by 1/0.
-vec3 demodulation_albedo(vec3 albedo);
-
-// Per pixel: direct and indirect radiance demodulated by `albedo`, depth, normal, motion (2
-// channels) and the previous frame's depth of the point seen (core/render/motion.h).
+// Per pixel: direct and indirect radiance demodulated by `albedo` (core/filter/filters.h's
+// demodulate), depth, normal, motion (2 channels) and the previous frame's distance of the point
+// seen (core/render/centre_gbuffer.h).
 std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& indirect, const Image& albedo,
                                            const Image& depth, const Image& normal, const Image& motion,
                                            const Image& previous_depth);
@@ -43,9 +40,10 @@ std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>&
 TemporalPush temporal_push(const TemporalParams& params, int width, int height);
 
 // The history's averages as images: illumination (RGB), moments of luminance (2 channels:
-// E[l], E[l^2]) and history length (1 channel), of the direct (`direct` true) or indirect light.
+// E[l], E[l^2]) and the frames behind them (1 channel), of the direct (`direct` true) or indirect
+// light.
 struct TemporalImages {
-  Image illumination, moments, length;
+  Image illumination, moments, frames;
 };
 TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height, bool direct);
 

@@ -438,5 +438,22 @@ TEST_F(AnimationErrors, ReachTheCommandLineAsOneErrorLine) {
   EXPECT_EQ(r.output.find("error: "), r.output.rfind("error: ")) << "one error line: " << r.output;
 }
 
+// ---- the scene that ships ----
+
+TEST(SceneAnimation, ShippedAnimatedBoxMovesItsBoxAndCamera) {
+  Scene s = load_gltf(std::string(SST_SOURCE_DIR) + "/scenes/animated_box.gltf");
+  ASSERT_TRUE(s.animation);
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_DOUBLE_EQ(s.animation->start_time(), 0.0);
+  EXPECT_DOUBLE_EQ(s.animation->end_time(), 2.0);
+  s.animation->pose(s, 0.0);
+  Scene later = s;
+  PoseChange change = later.animation->pose(later, 1.0);
+  EXPECT_TRUE(change.geometry);
+  EXPECT_TRUE(change.cameras);
+  EXPECT_FALSE(change.lights);
+  EXPECT_GT(glm::distance(later.cameras[0].eye, s.cameras[0].eye), 0.1f);
+}
+
 }  // namespace
 }  // namespace sst

@@ -5,16 +5,21 @@
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <numeric>
+#include <optional>
+#include <set>
 #include <sstream>
 #include <tuple>
 #include <unordered_map>
 
+#include "core/scene/animation.h"
+#include "core/scene/node_transform.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -215,6 +220,7 @@ Texture to_texture(const tinygltf::Image& img, bool srgb) {
 
 struct Instance {
   int node;
+  int parent;  // index of the parent's Instance, -1 for a root
   glm::dmat4 world;
 };
 
@@ -235,11 +241,22 @@ class GltfConverter {
     check_extensions();
     note_ignored_features();
     std::vector<Instance> instances = traverse_nodes();
-    for (const Instance& inst : instances) {
+    std::vector<int> rig_node = build_rig_nodes(instances, read_animations());
+    for (size_t i = 0; i < instances.size(); ++i) {
+      const Instance& inst = instances[i];
       const tinygltf::Node& node = model_.nodes[inst.node];
-      if (node.mesh >= 0) add_mesh(inst);
-      if (node.camera >= 0) add_camera(inst);
-      if (const tinygltf::Value* ext = extension(node.extensions, "KHR_lights_punctual")) add_light(inst, *ext);
+      int moving = rig_node[i];
+      if (node.mesh >= 0) add_mesh(inst, moving);
+      if (node.camera >= 0) {
+        size_t before = scene_.cameras.size();
+        add_camera(inst);
+        if (moving >= 0 && scene_.cameras.size() > before) rig_.cameras.push_back({moving, uint32_t(before)});
+      }
+      if (const tinygltf::Value* ext = extension(node.extensions, "KHR_lights_punctual")) {
+        size_t before = scene_.lights.size();
+        add_light(inst, *ext);
+        if (moving >= 0 && scene_.lights.size() > before) rig_.lights.push_back({moving, uint32_t(before)});
+      }
     }
     if (scene_.triangles.empty()) fail("scene has no triangles");
     if (degenerate_triangles_ > 0)
@@ -247,6 +264,7 @@ class GltfConverter {
     build_materials();
     decode_textures();
     scene_.finalize_bounds();
+    attach_animation();
     if (scene_.cameras.empty()) add_auto_camera();
     if (!scene_has_lights()) warnings_.add("scene has no lights: the image will be black");
     warnings_.append_to(scene_.warnings);
@@ -272,22 +290,25 @@ class GltfConverter {
   }
 
   void note_ignored_features() {
-    if (!model_.animations.empty()) warnings_.add("animations ignored: the rest pose is rendered");
     if (!model_.skins.empty()) warnings_.add("skins ignored: the rest pose is rendered");
   }
 
   // ---- node hierarchy ----
 
-  glm::dmat4 local_matrix(int index) const {
+  // A node's rest transform, checked: a matrix, or translation, rotation and scale.
+  RigNode rest_node(int index) const {
     const tinygltf::Node& n = model_.nodes[index];
     std::string what = quoted_name("node", index, n.name);
-    glm::dmat4 M(1.0);
+    RigNode out;
+    out.name = n.name;
     if (!n.matrix.empty()) {
       if (n.matrix.size() != 16) fail(what + " has a matrix of " + std::to_string(n.matrix.size()) + " numbers (needs 16)");
       if (!all_finite(n.matrix)) fail(what + " has a non-finite matrix");
+      glm::dmat4 M(1.0);
       for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r) M[c][r] = n.matrix[c * 4 + r];  // column-major, as glTF
-      return M;
+      out.matrix = M;
+      return out;
     }
     auto check = [&](const std::vector<double>& v, size_t size, const char* field) {
       if (!v.empty() && v.size() != size) fail(what + " has a " + field + " of " + std::to_string(v.size()) + " numbers");
@@ -296,25 +317,11 @@ class GltfConverter {
     check(n.translation, 3, "translation");
     check(n.rotation, 4, "rotation");
     check(n.scale, 3, "scale");
-    glm::dmat4 T(1.0), R(1.0), S(1.0);
-    if (!n.translation.empty()) T[3] = glm::dvec4(n.translation[0], n.translation[1], n.translation[2], 1.0);
-    if (!n.rotation.empty()) R = rotation_matrix(n.rotation, what);
-    if (!n.scale.empty()) S = glm::dmat4(glm::dvec4(n.scale[0], 0, 0, 0), glm::dvec4(0, n.scale[1], 0, 0),
-                                         glm::dvec4(0, 0, n.scale[2], 0), glm::dvec4(0, 0, 0, 1));
-    return T * R * S;
-  }
-
-  // glTF stores the unit quaternion as [x, y, z, w]; it is renormalised because exporters write
-  // it with float precision.
-  glm::dmat4 rotation_matrix(const std::vector<double>& q, const std::string& what) const {
-    double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    if (!(len > 0.0)) fail(what + " has a zero rotation quaternion");
-    double x = q[0] / len, y = q[1] / len, z = q[2] / len, w = q[3] / len;
-    glm::dmat4 R(1.0);
-    R[0] = glm::dvec4(1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0);
-    R[1] = glm::dvec4(2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0);
-    R[2] = glm::dvec4(2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0);
-    return R;
+    if (!n.translation.empty()) out.translation = glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
+    if (!n.rotation.empty()) out.rotation = glm::dvec4(n.rotation[0], n.rotation[1], n.rotation[2], n.rotation[3]);
+    if (!n.scale.empty()) out.scale = glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
+    if (!(glm::dot(out.rotation, out.rotation) > 0.0)) fail(what + " has a zero rotation quaternion");
+    return out;
   }
 
   std::vector<int> root_nodes() const {
@@ -345,23 +352,159 @@ class GltfConverter {
         if (++parents[c] > 1) fail(quoted_name("node", c, model_.nodes[c].name) + " has more than one parent");
       }
     std::vector<Instance> out;
-    struct Item { int node; glm::dmat4 parent; size_t depth; };
+    struct Item { int node; int parent; size_t depth; };
     std::vector<Item> stack;
     std::vector<int> roots = root_nodes();
     for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
       if (*it < 0 || size_t(*it) >= count) fail("scene lists missing node " + std::to_string(*it));
-      stack.push_back({*it, glm::dmat4(1.0), 0});
+      stack.push_back({*it, -1, 0});
     }
     while (!stack.empty()) {
       Item item = stack.back();
       stack.pop_back();
       if (item.depth > count) fail("node hierarchy has a cycle through node " + std::to_string(item.node));
-      glm::dmat4 world = item.parent * local_matrix(item.node);
-      out.push_back({item.node, world});
+      glm::dmat4 parent_world = item.parent >= 0 ? out[item.parent].world : glm::dmat4(1.0);
+      out.push_back({item.node, item.parent, parent_world * rest_node(item.node).local_matrix()});
+      int self = int(out.size()) - 1;
       const auto& children = model_.nodes[item.node].children;
-      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
+      for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, self, item.depth + 1});
     }
     return out;
+  }
+
+  // ---- animations ----
+
+  // Every animation plays at once on one clock. A target animated by two animations follows the
+  // later one (glTF forbids two channels on one target only within an animation). Channels on
+  // morph target weights are ignored, as morph targets are. AnimationChannel::node is the glTF
+  // node here; build_rig_nodes maps it to the rig.
+  std::vector<AnimationChannel> read_animations() {
+    std::vector<AnimationChannel> out;
+    std::map<std::pair<int, AnimatedProperty>, size_t> animated_by;  // target -> animation
+    size_t weight_channels = 0;
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+      const tinygltf::Animation& animation = model_.animations[a];
+      std::string animation_name = quoted_name("animation", a, animation.name);
+      for (size_t c = 0; c < animation.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& channel = animation.channels[c];
+        std::string what = animation_name + " channel " + std::to_string(c);
+        if (channel.sampler < 0 || size_t(channel.sampler) >= animation.samplers.size())
+          fail(what + " refers to missing sampler " + std::to_string(channel.sampler));
+        int node = channel.target_node;
+        if (node < 0 || size_t(node) >= model_.nodes.size()) fail(what + " targets missing node " + std::to_string(node));
+        if (channel.target_path == "weights") {
+          ++weight_channels;
+          continue;
+        }
+        std::optional<AnimatedProperty> property = animated_property(channel.target_path);
+        if (!property) fail(what + " has unknown target path '" + channel.target_path + "'");
+        std::string target = quoted_name("node", node, model_.nodes[node].name) + " " + channel.target_path;
+        if (!model_.nodes[node].matrix.empty())
+          fail(what + " targets " + target + ", but the node has a matrix (glTF animates only TRS nodes)");
+        auto [it, fresh] = animated_by.try_emplace({node, *property}, a);
+        if (!fresh && it->second == a) fail(what + " targets " + target + ", which another channel of the animation targets");
+        if (!fresh) {
+          warnings_.add(target + " is animated by " + quoted_name("animation", it->second, model_.animations[it->second].name) +
+                        " and " + animation_name + ": the later one is played");
+          std::erase_if(out, [&](const AnimationChannel& o) { return o.node == node && o.property == *property; });
+          it->second = a;
+        }
+        std::string sampler = what + " sampler " + std::to_string(channel.sampler);
+        out.push_back(read_sampler(animation.samplers[channel.sampler], *property, sampler));
+        out.back().name = what;
+        out.back().node = node;
+      }
+    }
+    if (weight_channels > 0)
+      warnings_.add("animated morph target weights ignored (" + std::to_string(weight_channels) +
+                    " channels): the base shape is rendered");
+    return out;
+  }
+
+  static std::optional<AnimatedProperty> animated_property(const std::string& path) {
+    if (path == "translation") return AnimatedProperty::Translation;
+    if (path == "rotation") return AnimatedProperty::Rotation;
+    if (path == "scale") return AnimatedProperty::Scale;
+    return std::nullopt;
+  }
+
+  AnimationChannel read_sampler(const tinygltf::AnimationSampler& sampler, AnimatedProperty property,
+                                const std::string& what) const {
+    constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE,
+                  UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, S = TINYGLTF_COMPONENT_TYPE_SHORT,
+                  US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    AnimationChannel c;
+    c.property = property;
+    if (sampler.interpolation == "LINEAR") c.interpolation = Interpolation::Linear;
+    else if (sampler.interpolation == "STEP") c.interpolation = Interpolation::Step;
+    else if (sampler.interpolation == "CUBICSPLINE") c.interpolation = Interpolation::CubicSpline;
+    else fail(what + " has unknown interpolation '" + sampler.interpolation + "'");
+
+    require_types(sampler.input, {F}, false, what + " input");
+    c.times = read_accessor<double>(sampler.input, 1, what + " input");
+    if (c.times.empty()) fail(what + " input has no keys");
+    for (size_t k = 0; k < c.times.size(); ++k) {
+      if (!std::isfinite(c.times[k])) fail(what + " input has a non-finite time at key " + std::to_string(k));
+      if (k > 0 && !(c.times[k] > c.times[k - 1]))
+        fail(what + " input times are not strictly increasing at key " + std::to_string(k) + " (" +
+             std::to_string(c.times[k - 1]) + " then " + std::to_string(c.times[k]) + ")");
+    }
+
+    bool rotation = property == AnimatedProperty::Rotation;
+    int components = rotation ? 4 : 3;
+    if (rotation) require_types(sampler.output, {F, B, UB, S, US}, true, what + " output");
+    else if (quantization_) require_types(sampler.output, {F, B, UB, S, US}, false, what + " output");
+    else require_types(sampler.output, {F}, false, what + " output");
+    c.values = read_accessor<double>(sampler.output, components, what + " output");
+    size_t per_key = c.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    size_t elements = c.values.size() / components;
+    if (elements != c.times.size() * per_key)
+      fail(what + " output has " + std::to_string(elements) + " elements for " + std::to_string(c.times.size()) +
+           " key times (" + interpolation_name(c.interpolation) + " needs " + std::to_string(c.times.size() * per_key) + ")");
+    for (size_t i = 0; i < elements; ++i) {
+      const double* v = c.values.data() + i * components;
+      if (!std::all_of(v, v + components, [](double x) { return std::isfinite(x); }))
+        fail(what + " output has a non-finite value at element " + std::to_string(i));
+      bool is_value = per_key == 1 || i % 3 == 1;  // not a spline's tangent
+      if (rotation && is_value && !(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3] > 0.0))
+        fail(what + " output has a zero rotation quaternion at key " + std::to_string(i / per_key));
+    }
+    return c;
+  }
+
+  // The rig: one RigNode per instance that a channel targets or that descends from one (a
+  // node instanced twice gets the channels twice). Returns, per instance, its rig node or -1.
+  std::vector<int> build_rig_nodes(const std::vector<Instance>& instances, std::vector<AnimationChannel> channels) {
+    std::set<int> targets;
+    for (const AnimationChannel& c : channels) targets.insert(c.node);
+    std::vector<int> rig_node(instances.size(), -1);
+    for (size_t i = 0; i < instances.size(); ++i) {  // parents come first
+      const Instance& inst = instances[i];
+      int moving_parent = inst.parent >= 0 ? rig_node[inst.parent] : -1;
+      if (moving_parent < 0 && !targets.count(inst.node)) continue;
+      RigNode n = rest_node(inst.node);
+      n.parent = moving_parent;
+      if (inst.parent >= 0 && moving_parent < 0) n.parent_world = instances[inst.parent].world;
+      rig_node[i] = int(rig_.nodes.size());
+      rig_.nodes.push_back(std::move(n));
+      for (const AnimationChannel& c : channels)
+        if (c.node == inst.node) {
+          rig_.channels.push_back(c);
+          rig_.channels.back().node = rig_node[i];
+        }
+    }
+    return rig_node;
+  }
+
+  // Channels whose nodes are not in the rendered scene move nothing: no animation then.
+  void attach_animation() {
+    if (rig_.channels.empty()) return;
+    rig_.vertex_count = scene_.positions.size();
+    std::vector<char> moves(scene_.positions.size(), 0);
+    for (const AnimatedMesh& m : rig_.meshes) std::fill_n(moves.begin() + m.first_vertex, m.positions.size(), 1);
+    for (size_t v = 0; v < moves.size(); ++v)
+      if (!moves[v]) rig_.static_bounds.extend(scene_.positions[v]);
+    scene_.animation = std::make_shared<const SceneAnimation>(std::move(rig_));
   }
 
   // ---- accessors ----
@@ -576,13 +719,22 @@ class GltfConverter {
     return tris;
   }
 
-  void add_mesh(const Instance& inst) {
+  // A mesh under a moving node (rig_node >= 0) also keeps its vertices in object space.
+  void add_mesh(const Instance& inst, int rig_node) {
     int mesh_index = model_.nodes[inst.node].mesh;
     if (size_t(mesh_index) >= model_.meshes.size())
       fail(quoted_name("node", inst.node, model_.nodes[inst.node].name) + " refers to missing mesh " + std::to_string(mesh_index));
     const tinygltf::Mesh& mesh = model_.meshes[mesh_index];
+    AnimatedMesh moving;
+    moving.node = rig_node;
+    moving.first_vertex = uint32_t(scene_.positions.size());
+    moving.first_triangle = uint32_t(scene_.triangles.size());
+    recording_ = rig_node >= 0 ? &moving : nullptr;
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
       add_primitive(mesh.primitives[p], inst.world, quoted_name("mesh", mesh_index, mesh.name) + " primitive " + std::to_string(p));
+    recording_ = nullptr;
+    moving.triangle_count = uint32_t(scene_.triangles.size() - moving.first_triangle);
+    if (rig_node >= 0 && !moving.positions.empty()) rig_.meshes.push_back(std::move(moving));
   }
 
   static const char* mode_name(int mode) {
@@ -618,24 +770,13 @@ class GltfConverter {
     else append_flat(at, tris, world, material, what);
   }
 
-  struct WorldTransform {
-    glm::dmat4 m;
-    glm::dmat3 normal;  // the cofactor matrix, sign-corrected: the inverse transpose up to scale
-    bool mirrored;
-  };
-
-  // The cofactor matrix (columns b x c, c x a, a x b) is the inverse transpose times det, so it
-  // transforms normals even when the matrix is singular.
-  static WorldTransform world_transform(const glm::dmat4& m) {
-    glm::dmat3 a(m);
-    double det = glm::determinant(a);
-    glm::dmat3 cof(glm::cross(a[1], a[2]), glm::cross(a[2], a[0]), glm::cross(a[0], a[1]));
-    return {m, det < 0 ? -cof : cof, det < 0};
+  static vec3 object_position(const Attributes& at, uint32_t i) {
+    const std::vector<float>& p = *at.positions;
+    return vec3(p[3 * i], p[3 * i + 1], p[3 * i + 2]);
   }
 
-  vec3 world_position(const WorldTransform& t, const std::vector<float>& p, uint32_t i, const std::string& what) const {
-    glm::dvec4 w = t.m * glm::dvec4(p[3 * i], p[3 * i + 1], p[3 * i + 2], 1.0);
-    vec3 out(w);
+  vec3 world_position(const WorldTransform& t, const Attributes& at, uint32_t i, const std::string& what) const {
+    vec3 out = transform_point(t, object_position(at, i));
     if (!is_finite(out)) fail(what + " has a vertex that is not finite in world space (vertex " + std::to_string(i) + ")");
     return out;
   }
@@ -643,14 +784,6 @@ class GltfConverter {
   vec2 uv_of(const Attributes& at, uint32_t i) const {
     return at.uvs ? vec2((*at.uvs)[2 * i], (*at.uvs)[2 * i + 1]) : vec2(0.0f);
   }
-
-  // Unnormalised geometric normal of a triangle, oriented by its (possibly flipped) winding.
-  static vec3 face_normal(vec3 a, vec3 b, vec3 c) { return glm::cross(b - a, c - a); }
-
-  // Judged and normalised by the largest component, because the squared length of a tiny
-  // triangle's cross product (edges ~1e-12) underflows in float although the direction is fine.
-  static bool usable(vec3 n) { return is_finite(n) && max_component(glm::abs(n)) > 0.0f; }
-  static vec3 unit(vec3 n) { return glm::normalize(n / max_component(glm::abs(n))); }
 
   uint32_t checked_vertex_base(size_t extra, const std::string& what) const {
     if (scene_.positions.size() + extra >= size_t(UINT32_MAX)) fail("too many vertices (more than 2^32) at " + what);
@@ -668,36 +801,36 @@ class GltfConverter {
       auto [it, fresh] = remap.try_emplace(i, 0);
       if (!fresh) return it->second;
       it->second = checked_vertex_base(1, what);
-      scene_.positions.push_back(world_position(t, *at.positions, i, what));
+      scene_.positions.push_back(world_position(t, at, i, what));
       const auto& n = *at.normals;
-      vec3 wn(t.normal * glm::dvec3(n[3 * i], n[3 * i + 1], n[3 * i + 2]));
+      vec3 object_normal(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
+      if (recording_) {
+        recording_->positions.push_back(object_position(at, i));
+        recording_->normals.push_back(object_normal);
+      }
+      vec3 wn = transform_normal(t, object_normal);
       needs_normal.push_back(!usable(wn));
       scene_.normals.push_back(usable(wn) ? unit(wn) : vec3(0.0f));
       scene_.uvs.push_back(uv_of(at, i));
       return it->second;
     };
     uint32_t base = uint32_t(scene_.positions.size());
+    size_t first_triangle = scene_.triangles.size();
     for (uvec3 tri : tris) {
       if (t.mirrored) std::swap(tri.y, tri.z);
       uvec3 v(vertex(tri.x), vertex(tri.y), vertex(tri.z));
-      vec3 fn = face_normal(scene_.positions[v.x], scene_.positions[v.y], scene_.positions[v.z]);
-      if (!usable(fn)) {
+      if (!usable(face_normal(scene_.positions[v.x], scene_.positions[v.y], scene_.positions[v.z]))) {
         ++degenerate_triangles_;
         continue;
       }
-      for (int k = 0; k < 3; ++k)
-        if (needs_normal[v[k] - base]) scene_.normals[v[k]] += fn;  // area-weighted geometric normal
       scene_.triangles.push_back(v);
       scene_.triangle_material.push_back(material);
     }
-    size_t replaced = 0;
-    for (size_t k = 0; k < needs_normal.size(); ++k) {
-      if (!needs_normal[k]) continue;
-      vec3& n = scene_.normals[base + k];
-      n = usable(n) ? unit(n) : vec3(0.0f, 0.0f, 1.0f);  // only on dropped triangles
-      ++replaced;
+    if (std::find(needs_normal.begin(), needs_normal.end(), 1) != needs_normal.end()) {
+      set_geometric_normals(scene_.positions, std::span<const uvec3>(scene_.triangles).subspan(first_triangle), base,
+                            needs_normal, scene_.normals);
+      warnings_.add("zero-length vertex normals replaced by the geometric normal");
     }
-    if (replaced > 0) warnings_.add("zero-length vertex normals replaced by the geometric normal");
   }
 
   // glTF: without NORMAL, a primitive is flat shaded; each triangle gets its own three vertices.
@@ -708,7 +841,7 @@ class GltfConverter {
     for (uvec3 tri : tris) {
       if (t.mirrored) std::swap(tri.y, tri.z);
       vec3 p[3];
-      for (int k = 0; k < 3; ++k) p[k] = world_position(t, *at.positions, tri[k], what);
+      for (int k = 0; k < 3; ++k) p[k] = world_position(t, at, tri[k], what);
       vec3 fn = face_normal(p[0], p[1], p[2]);
       if (!usable(fn)) {
         ++degenerate_triangles_;
@@ -719,6 +852,10 @@ class GltfConverter {
         scene_.positions.push_back(p[k]);
         scene_.normals.push_back(unit(fn));
         scene_.uvs.push_back(uv_of(at, tri[k]));
+        if (recording_) {  // a zero normal: posing rebuilds it from the face, as here
+          recording_->positions.push_back(object_position(at, tri[k]));
+          recording_->normals.push_back(vec3(0.0f));
+        }
       }
       scene_.triangles.emplace_back(b, b + 1, b + 2);
       scene_.triangle_material.push_back(material);
@@ -726,9 +863,6 @@ class GltfConverter {
   }
 
   // ---- cameras and lights ----
-
-  static vec3 world_point(const glm::dmat4& m) { return vec3(m[3]); }
-  static glm::dvec3 world_direction(const glm::dmat4& m, glm::dvec3 local) { return glm::dmat3(m) * local; }
 
   void add_camera(const Instance& inst) {
     const tinygltf::Node& node = model_.nodes[inst.node];
@@ -743,20 +877,12 @@ class GltfConverter {
     double yfov = cam.perspective.yfov, aspect = cam.perspective.aspectRatio;
     if (!(yfov > 0.0 && yfov < kPi)) fail("camera '" + name + "' has yfov " + std::to_string(yfov) + " (must be in (0, pi))");
     if (!(aspect >= 0.0 && std::isfinite(aspect))) fail("camera '" + name + "' has aspectRatio " + std::to_string(aspect));
-    glm::dvec3 f = world_direction(inst.world, {0, 0, -1}), u = world_direction(inst.world, {0, 1, 0});
-    double flen = glm::length(f);
-    glm::dvec3 fn = f / flen;
-    glm::dvec3 up = u - glm::dot(u, fn) * fn;  // Gram-Schmidt: shear in the node matrix is dropped
-    double ulen = glm::length(up);
-    if (!(flen > 0.0) || !(ulen > 0.0) || !std::isfinite(flen + ulen)) {
+    Camera c;
+    if (!place_camera(inst.world, c)) {
       warnings_.add("camera '" + name + "' has a degenerate node transform: skipped");
       return;
     }
-    Camera c;
     c.name = name;
-    c.eye = world_point(inst.world);
-    c.forward = vec3(fn);
-    c.up = vec3(up / ulen);
     c.yfov = float(yfov);
     c.aspect = float(aspect);
     scene_.cameras.push_back(c);
@@ -788,12 +914,7 @@ class GltfConverter {
     if (!is_finite(out.intensity) || glm::any(glm::lessThan(out.intensity, vec3(0.0f))))
       fail(what + " has a negative or non-finite color * intensity");
     if (l.range > 0.0) warnings_.add("light range ignored: pure inverse-square falloff, as in the references");
-    out.position = world_point(inst.world);
-    glm::dvec3 dir = world_direction(inst.world, {0, 0, -1});
-    double len = glm::length(dir);
-    if (out.type != LightType::Point && !(len > 0.0 && std::isfinite(len)))
-      fail(what + " has a degenerate node transform (no direction)");
-    out.direction = len > 0.0 ? vec3(dir / len) : vec3(0.0f, 0.0f, -1.0f);
+    if (!place_light(inst.world, out)) fail(what + " has a degenerate node transform (no direction)");
     if (out.type == LightType::Spot) set_cone(l.spot, what, out);
     scene_.lights.push_back(out);
   }
@@ -1003,6 +1124,8 @@ class GltfConverter {
   const std::string& file_;
   Scene& scene_;
   Warnings warnings_;
+  AnimationRig rig_;
+  AnimatedMesh* recording_ = nullptr;  // the moving mesh whose object-space vertices are kept
   bool quantization_ = false;
   bool texture_transform_required_ = false;
   size_t degenerate_triangles_ = 0;

@@ -2,6 +2,7 @@
 // baked), materials, textures, punctual lights and cameras. Built by the glTF loader or in code
 // (analytic test scenes); nothing downstream knows about glTF.
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,8 @@ struct Camera {
   float aspect = 0.0f;              // width / height; 0 when the file gives none
 };
 
+class SceneAnimation;
+
 struct Scene {
   std::string source;  // file path, or "builtin:<name>" / "generated:<name>"
 
@@ -62,6 +65,9 @@ struct Scene {
 
   Bounds3 bounds;  // of all vertices
   std::vector<std::string> warnings;  // non-fatal loader findings, reported in the JSON record
+
+  // Poses this scene at a time (core/scene/animation.h); null when nothing in it moves.
+  std::shared_ptr<const SceneAnimation> animation;
 
   // Recomputes bounds; the loader and code-built scenes call it once geometry is final.
   void finalize_bounds();

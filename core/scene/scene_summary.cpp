@@ -1,5 +1,7 @@
 #include "core/scene/scene_summary.h"
 
+#include "core/scene/animation.h"
+
 namespace sst {
 namespace {
 
@@ -82,21 +84,23 @@ nlohmann::json scene_summary(const Scene& scene, bool diffuse_only) {
                               : nlohmann::json{{"min", vec_json(scene.bounds.lo)},
                                                {"max", vec_json(scene.bounds.hi)},
                                                {"diagonal", scene.bounds.diagonal()}};
-  return {{"source", scene.source},
-          {"triangles", scene.triangles.size()},
-          {"vertices", scene.positions.size()},
-          {"materials", scene.materials.size()},
-          {"textures", scene.textures.size()},
-          {"lights",
-           {{"point", counts[int(LightType::Point)]},
-            {"spot", counts[int(LightType::Spot)]},
-            {"directional", counts[int(LightType::Directional)]}}},
-          {"emissive_triangles", emissive},
-          {"bounds", bounds},
-          {"cameras", cameras},
-          {"diffuse_only", diffuse_only},
-          {"requires", to_json(requirements(scene, diffuse_only))},
-          {"warnings", scene.warnings}};
+  nlohmann::json summary = {{"source", scene.source},
+                            {"triangles", scene.triangles.size()},
+                            {"vertices", scene.positions.size()},
+                            {"materials", scene.materials.size()},
+                            {"textures", scene.textures.size()},
+                            {"lights",
+                             {{"point", counts[int(LightType::Point)]},
+                              {"spot", counts[int(LightType::Spot)]},
+                              {"directional", counts[int(LightType::Directional)]}}},
+                            {"emissive_triangles", emissive},
+                            {"bounds", bounds},
+                            {"cameras", cameras},
+                            {"diffuse_only", diffuse_only},
+                            {"requires", to_json(requirements(scene, diffuse_only))},
+                            {"warnings", scene.warnings}};
+  if (scene.animation) summary["animation"] = scene.animation->summary();  // static scenes' records stay as they were
+  return summary;
 }
 
 }  // namespace sst

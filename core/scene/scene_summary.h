@@ -25,7 +25,7 @@ SceneRequirements requirements(const Scene& scene, bool diffuse_only);
 nlohmann::json to_json(const SceneRequirements& r);
 
 // source, counts, light counts by type, emissive triangles, bounds, camera names, requires,
-// warnings.
+// warnings, and for an animated scene its animation's summary.
 nlohmann::json scene_summary(const Scene& scene, bool diffuse_only);
 
 }  // namespace sst

@@ -6,6 +6,7 @@
 #include "core/render/camera.h"
 #include "core/render/centre_gbuffer.h"
 #include "core/rng/hash_rng.h"
+#include "core/scene/animation.h"
 #include "core/temporal/temporal_reuse.h"
 #include "core/util/error.h"
 
@@ -123,8 +124,11 @@ class SequenceRunner {
     out.index = options_.frame_start + position;
     out.time = double(out.index) / double(options_.fps);
     StageTimer timer;
-    bool lights_moved = apply_key_frame_paths(paths_, scene_, out.time);
-    if (position == 0 || lights_moved) renderer_.prepare(scene_, timer);
+    PoseChange moved;
+    if (scene_.animation) moved = scene_.animation->pose(scene_, out.time);
+    moved.lights = apply_key_frame_paths(paths_, scene_, out.time) || moved.lights;
+    // Cameras are read per frame; geometry and lights are built into the renderer.
+    if (position == 0 || moved.geometry || moved.lights) renderer_.prepare(scene_, timer);
     const Camera& camera = scene_.cameras[size_t(camera_index_)];
     const uint32_t seed = frame_seed(options_.seed, out.index);
     const int w = options_.width, h = options_.height;

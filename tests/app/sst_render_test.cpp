@@ -143,3 +143,54 @@ TEST(SstRender, ExportsTheVplSetAsPly) {
 }
 }  // namespace
 }  // namespace sst
+
+namespace sst {
+namespace {
+
+TEST(SstRender, SequenceWritesNumberedFramesWithMotionARecordAndAPreview) {
+  auto dir = test::temp_dir();
+  std::ofstream(dir / "paths.json") << R"({"paths": [{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 20}]}]})";
+  auto r = test::run_command(render_cmd("-o " + (dir / "seq.exr").string() + " --width 24 --height 24 --spp 1 --frames 3 " +
+                                        "--frame-start 5 --temporal --denoise atrous --paths " +
+                                        (dir / "paths.json").string() + " -q"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  for (int i : {5, 6, 7}) {
+    std::string frame = (dir / ("seq_000" + std::to_string(i) + ".exr")).string();
+    ASSERT_TRUE(std::filesystem::exists(frame)) << frame;
+    std::vector<std::string> layers = list_layers(frame);
+    for (const char* layer : {"motion", "raw", "albedo", "depth"})
+      EXPECT_NE(std::find(layers.begin(), layers.end(), layer), layers.end()) << layer;
+    EXPECT_EQ(read_layer(frame, "motion").channels, 2);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir / "seq_0004.exr"));
+  nlohmann::json rec = read_json_file((dir / "seq.json").string());
+  ASSERT_EQ(rec["frames"].size(), 3u);
+  EXPECT_EQ(rec["frames"][0]["index"], 5);
+  EXPECT_NE(rec["frames"][0]["seed"], rec["frames"][1]["seed"]);
+  EXPECT_TRUE(rec["frames"][2]["timings_ms"].contains("denoise"));
+  EXPECT_EQ(rec["options"]["frames"], 3);
+  // The preview needs ffmpeg; without it the record says why there is none.
+  if (rec["outputs"].contains("preview"))
+    EXPECT_GT(std::filesystem::file_size(dir / "seq.mp4"), 0u);
+  else
+    EXPECT_TRUE(rec.contains("warnings")) << rec.dump();
+  EXPECT_FALSE(std::filesystem::exists(dir / "seq.preview-frames"));
+}
+
+TEST(SstRender, BadSequenceInputIsOneLineAndNonZeroExit) {
+  auto dir = test::temp_dir();
+  std::string out = " -o " + (dir / "x.exr").string() + " --width 8 --spp 1 -q";
+  expect_one_line_error(test::run_command(render_cmd("--frames 0" + out)), "frames");
+  expect_one_line_error(test::run_command(render_cmd("--denoise blur --frames 2" + out)), "denoise");
+  expect_one_line_error(test::run_command(render_cmd("--indirect-scale 0" + out)), "indirect_scale");
+  expect_one_line_error(test::run_command(render_cmd("--history-cap 0 --temporal" + out)), "history_cap");
+  std::ofstream(dir / "p.json") << R"([{"camera": "nope", "keys": [{"time": 0}]}])";
+  expect_one_line_error(test::run_command(render_cmd("--frames 2 --paths " + (dir / "p.json").string() + out)),
+                        "no camera 'nope'");
+  expect_one_line_error(test::run_command(render_cmd("--frames 2 --repeat 2" + out)), "--repeat");
+  EXPECT_FALSE(std::filesystem::exists(dir / "x_0000.exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "x.exr"));
+}
+
+}  // namespace
+}  // namespace sst

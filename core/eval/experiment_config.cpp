@@ -14,8 +14,9 @@
 namespace sst {
 namespace {
 
-const std::vector<std::string> kConfigKeys = {"name",     "description", "scenes", "scene",  "base",          "axes",
-                                              "variants", "reference",   "seeds",  "repeat", "time_budget_ms"};
+const std::vector<std::string> kConfigKeys = {"name",   "description",    "scenes",        "scene", "base",
+                                              "axes",   "variants",       "reference",     "seeds", "repeat",
+                                              "time_budget_ms", "warmup_frames", "paths"};
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -165,6 +166,16 @@ ExperimentConfig parse_experiment_config(const nlohmann::json& j, const std::str
   }
   if (j.contains("seeds")) c.seeds = positive_int(j["seeds"], context + ": seeds");
   if (j.contains("repeat")) c.repeat = positive_int(j["repeat"], context + ": repeat");
+  if (j.contains("warmup_frames")) {
+    const nlohmann::json& w = j["warmup_frames"];
+    if (!w.is_number_integer() || w.get<long long>() < 0 || w.get<long long>() > 100000)
+      throw Error(context + ": warmup_frames: expected an integer in 0..100000, got " + w.dump());
+    c.warmup_frames = w.get<int>();
+  }
+  if (j.contains("paths")) {
+    if (!j["paths"].is_array()) throw Error(context + ": 'paths' must be a list of key-frame paths");
+    c.paths = j["paths"];
+  }
   return c;
 }
 
@@ -200,6 +211,8 @@ std::vector<RunSpec> expand_runs(const ExperimentConfig& config) {
           run.variant = variant.name;
           run.axes = axes;
           run.repeat = config.repeat;
+          run.warmup_frames = config.warmup_frames;
+          run.paths = config.paths;
           nlohmann::json params = merged;
           run.seed = seed0 + uint32_t(s);
           params["seed"] = run.seed;
@@ -216,6 +229,9 @@ std::vector<RunSpec> expand_runs(const ExperimentConfig& config) {
           nlohmann::json identity = {{"scene", scene},          {"options", run.options},
                                      {"method_params", run.method_params}, {"time_budget_ms", run.time_budget_ms},
                                      {"repeat", run.repeat}};
+          // Only sequences name their frames, so the runs of earlier configs keep their hashes.
+          if (run.warmup_frames > 0) identity["warmup_frames"] = run.warmup_frames;
+          if (!run.paths.is_null()) identity["paths"] = run.paths;
           run.spec_hash = Hash64().add(identity.dump()).hex();
           reference_for(run, config.reference, "");  // a bad reference fails now, not after hours
           runs.push_back(std::move(run));

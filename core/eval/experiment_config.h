@@ -15,6 +15,8 @@
 // | seeds          | independent runs per point: seed, seed+1, ... (bias and variance when > 1)      |
 // | repeat         | renders per run for timing (medians with min and max)                            |
 // | time_budget_ms | equal-time mode: spp is calibrated per run so its frame time meets the budget    |
+// | warmup_frames  | sequences: frames rendered before the measured ones (`frames`, a render option)  |
+// | paths          | sequences: key-frame paths moving cameras and lights (core/scene/key_frame_path.h) |
 //
 // A parameter that belongs only to other methods than a run's (e.g. vpls on a pt variant) does
 // not apply to that run and is dropped from it; the run records what was in effect.
@@ -41,6 +43,8 @@ struct ExperimentConfig {
   nlohmann::json reference = nlohmann::json::object();
   int seeds = 1;
   int repeat = 1;
+  int warmup_frames = 0;
+  nlohmann::json paths;   // null: none
   nlohmann::json source;  // the config as given
 };
 
@@ -58,6 +62,8 @@ struct RunSpec {
   nlohmann::json method_params;  // the method's own parameters given (defaults not filled in)
   double time_budget_ms = 0.0;   // > 0: equal-time mode
   int repeat = 1;
+  int warmup_frames = 0;         // a sequence's frames before those measured
+  nlohmann::json paths;          // the config's key-frame paths (null: none)
   std::string spec_hash;  // of everything above that determines the run's result
 };
 

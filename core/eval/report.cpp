@@ -337,6 +337,30 @@ json group_table(const Index& index, const Scene& scene) {
                "over the group's seeds; rel MSE, PSNR, efficiency and SSIM gain are means over its runs.");
 }
 
+// Sequences: per group (its seed-0 run), the medians over measured frames of the raw frames'
+// error (before temporal reuse and denoising) and of the output's, and their flicker.
+json sequence_table(const Index& index, const Scene& scene) {
+  json rows = json::array();
+  for (const json* g : scene.groups) {
+    const json* run = representative_run(index, *g);
+    if (!run || !member(*run, "frames").is_array()) continue;
+    const json &raw = member(*run, "metrics_raw"), &out = member(*run, "metrics");
+    rows.push_back(row({cell(text_of(*g, "label"), "label"), cell(fmt_count(number(*run, "warmup_frames"))),
+                        cell(fmt_count(double(member(*run, "frames").size()))), cell(fmt(number(raw, "rmse"))),
+                        cell(fmt(number(out, "rmse"))), cell(fmt(number(raw, "ssim"))), cell(fmt(number(out, "ssim"))),
+                        cell(fmt(number(*run, "flicker_raw"))), cell(fmt(number(*run, "flicker")))}));
+  }
+  if (rows.empty()) return nullptr;
+  json head = json::array();
+  for (const char* h : {"label", "warm-up", "measured", "RMSE raw", "RMSE out", "SSIM raw", "SSIM out", "flicker raw",
+                        "flicker out"})
+    head.push_back(head_cell(h));
+  return table("groups", head, rows,
+               "Sequences: medians over the measured frames, each against its own reference; raw = the method's "
+               "frames before temporal reuse and denoising, out = the output. Flicker: RMS of the frame-to-frame "
+               "change minus the reference's (core/eval/README.md).");
+}
+
 // ---- plots
 
 void sort_by_x(std::vector<PlotPoint>& points) {
@@ -398,10 +422,29 @@ Plot vpl_plot(const Index& index, const Scene& scene, bool rmse) {
   return plot;
 }
 
+// RMSE per measured frame of each sequence group's seed-0 run, of the output or of the raw frames.
+Plot per_frame_rmse_plot(const Index& index, const Scene& scene, bool raw) {
+  std::vector<FrameSeries> series;
+  int first = 0;
+  for (const json* g : scene.groups) {
+    const json* run = representative_run(index, *g);
+    if (!run || !member(*run, "frames").is_array() || member(*run, "frames").empty()) continue;
+    FrameSeries f{text_of(*g, "label"), {}, index.style(text_of(*g, "label"))};
+    for (const json& frame : member(*run, "frames")) f.values.push_back(number(member(frame, raw ? "metrics_raw" : "metrics"), "rmse"));
+    first = int(number(member(*run, "frames")[0], "index"));
+    series.push_back(std::move(f));
+  }
+  PlotAxis y;
+  y.label = raw ? "RMSE of the raw frame" : "RMSE of the output";
+  y.scale = AxisScale::log10;
+  return per_frame_plot(raw ? "raw frames: RMSE per frame" : "output: RMSE per frame", y, series, first);
+}
+
 // The scene's plots, each left out when it would have fewer than 2 points.
 json plot_views(const Index& index, const Scene& scene) {
   std::vector<Plot> plots{rmse_time_plot(index, scene)};
   if (vpls_vary(scene)) plots.insert(plots.end(), {vpl_plot(index, scene, true), vpl_plot(index, scene, false)});
+  plots.insert(plots.end(), {per_frame_rmse_plot(index, scene, false), per_frame_rmse_plot(index, scene, true)});
   json views = json::array();
   for (const Plot& plot : plots)
     if (drawable_point_count(plot) >= 2) views.push_back(plot_view(plot));
@@ -434,6 +477,11 @@ json run_card(const Index& index, const json& group, const json& run) {
   flip["flip"] = {{"run", url(png)}, {"ref", url(text_of(index.reference(text_of(run, "reference")), "image_png"))},
                   {"id", id}};
   json figures = {flip};
+  // A sequence: its measured frames beside their references, playing in step.
+  const json& videos = member(run, "videos");
+  if (!text_of(videos, "frame").empty()) figures.push_back(video_figure(text_of(videos, "frame"), "sequence", aspect));
+  if (!text_of(videos, "reference").empty())
+    figures.push_back(video_figure(text_of(videos, "reference"), "its reference", aspect));
   // A pruned results folder keeps no heat maps (sst-eval sweep writes them; prune_results.sh drops them).
   if (!text_of(images, "error_png").empty()) {
     json error = image_figure(text_of(images, "error_png"), "error of " + id,
@@ -473,6 +521,7 @@ json scene_section(const Index& index, const Scene& scene) {
                                           {span("metrics against reference "), span(id, true),
                                            span(": " + reference_summary(index.reference(id)))}}}));
   if (!scene.groups.empty()) blocks.push_back(block("table", group_table(index, scene)));
+  if (json sequences = sequence_table(index, scene); !sequences.is_null()) blocks.push_back(block("table", sequences));
   json plots = plot_views(index, scene);
   if (!plots.empty()) blocks.push_back(block("plots", {{"items", plots}}));
   blocks.push_back(block("heading", "Images"));

@@ -4,11 +4,16 @@
 #include <cmath>
 #include <filesystem>
 
+#include "core/image/video.h"
+#include "core/metrics/error_map.h"
 #include "core/metrics/metrics.h"
 #include "core/pipeline/render_record.h"
+#include "core/pipeline/sequence.h"
+#include "core/scene/key_frame_path.h"
 #include "core/scene/scene_summary.h"
 #include "core/util/json_io.h"
 #include "core/util/params.h"
+#include "core/util/error.h"
 #include "core/util/statistics.h"
 
 namespace fs = std::filesystem;
@@ -18,9 +23,10 @@ namespace {
 
 constexpr int kMaxCalibratedSpp = 1 << 16;
 
+RenderOptions run_options(const RunSpec& run);
+
 RenderResult render_run(const Scene& scene, const RunSpec& run, int spp) {
-  RenderOptions options;
-  params_from_json(options, run.options, "run " + run.id);
+  RenderOptions options = run_options(run);
   if (spp > 0) options.spp = spp;
   return render_frame(scene, options, run.method_params, true);
 }
@@ -36,7 +42,149 @@ int refine_spp(int spp, double measured_ms, double budget_ms, nlohmann::json& ca
   return int(std::clamp(std::round((budget_ms - fixed) / per_spp), 1.0, double(kMaxCalibratedSpp)));
 }
 
+RenderOptions run_options(const RunSpec& run) {
+  RenderOptions options;
+  params_from_json(options, run.options, "run " + run.id);
+  return options;
+}
+
+// What posing changes in a scene, put back when a sequence run ends, so the runs and references
+// after it see the scene as loaded.
+class PoseRestorer {
+ public:
+  explicit PoseRestorer(Scene& scene)
+      : scene_(scene), positions_(scene.positions), normals_(scene.normals), cameras_(scene.cameras),
+        lights_(scene.lights), bounds_(scene.bounds) {}
+  ~PoseRestorer() {
+    scene_.positions = std::move(positions_);
+    scene_.normals = std::move(normals_);
+    scene_.cameras = std::move(cameras_);
+    scene_.lights = std::move(lights_);
+    scene_.bounds = bounds_;
+  }
+
+ private:
+  Scene& scene_;
+  std::vector<vec3> positions_, normals_;
+  std::vector<Camera> cameras_;
+  std::vector<PunctualLight> lights_;
+  Bounds3 bounds_;
+};
+
+// The median over frames of every numeric metric; non-numeric ones from the last frame.
+nlohmann::json median_metrics(const std::vector<nlohmann::json>& frames) {
+  nlohmann::json out = frames.back();
+  for (const auto& [key, value] : frames.back().items()) {
+    if (!value.is_number()) continue;
+    std::vector<double> v;
+    for (const nlohmann::json& f : frames)
+      if (f[key].is_number()) v.push_back(f[key].get<double>());
+    out[key] = v.empty() ? nlohmann::json(nullptr) : nlohmann::json(median(v));
+  }
+  return out;
+}
+
+const Image& layer_or(const FrameOutput& frame, const char* name, const Image& fallback) {
+  for (const Layer& l : frame.extra_layers)
+    if (l.name == name) return l.image;
+  return fallback;
+}
+
+// A sequence run: warm-up frames, then measured frames, each against its own reference. Per-frame
+// metrics of the output and of the raw frame (before reuse and denoising), their medians, and the
+// flicker of both (core/metrics/metrics.h): the record's "metrics" are the medians, so tables and
+// reports read sequences as they read single frames.
+void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference& frame_reference,
+                          const std::string& run_dir, nlohmann::json& record) {
+  RenderOptions options = run_options(run);
+  const int measured = options.frames;
+  options.frames = run.warmup_frames + measured;
+  PoseRestorer restore(scene);
+  std::vector<KeyFramePath> paths = parse_key_frame_paths(run.paths, scene, "paths");
+  fs::path dir(run_dir), preview_dir = dir / "frames";
+  std::vector<nlohmann::json> frames, metrics, metrics_raw;
+  std::vector<double> frame_times;
+  double flicker = 0.0, flicker_raw = 0.0;
+  int pairs = 0;
+  Image previous, previous_raw, previous_reference;
+  RenderResult last;
+  Image last_reference;
+  render_sequence(scene, paths, options, run.method_params, true, [&](SequenceFrame& f) {
+    const int position = f.index - options.frame_start;
+    if (position < run.warmup_frames) return;
+    RunReference reference = frame_reference(f.index, f.time, scene);
+    const FrameOutput& out = f.result.frame;
+    const Image& raw = layer_or(out, "raw", out.color);
+    ImageMetrics m = compare_images(out.color, *reference.image), m_raw = compare_images(raw, *reference.image);
+    double ms = frame_ms(f.result);
+    frame_times.push_back(ms);
+    metrics.push_back(to_json(m));
+    metrics_raw.push_back(to_json(m_raw));
+    frames.push_back({{"index", f.index}, {"time", f.time}, {"frame_ms", ms}, {"reference", reference.id},
+                      {"metrics", metrics.back()}, {"metrics_raw", metrics_raw.back()},
+                      {"stages", stage_statistics({f.result.timer})}});
+    if (!previous.data.empty()) {
+      flicker += flicker_mse(previous, out.color, previous_reference, *reference.image);
+      flicker_raw += flicker_mse(previous_raw, raw, previous_reference, *reference.image);
+      ++pairs;
+    }
+    previous = out.color;
+    previous_raw = raw;
+    previous_reference = *reference.image;
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%04d.png", position - run.warmup_frames);
+    write_image((preview_dir / name).string(), out.color, {}, f.result.options.exposure);
+    write_image((preview_dir / ("reference_" + std::string(name + 6))).string(), *reference.image, {},
+                f.result.options.exposure);
+    last = std::move(f.result);
+    last_reference = *reference.image;
+    // Every frame has its own reference; the run names the last measured one's.
+    record["reference"] = reference.id;
+    record["reference_description"] = reference.description;
+  });
+  write_image((dir / "image.exr").string(), last.frame.color, last.frame.layers());
+  write_image((dir / "image.png").string(), last.frame.color, {}, last.options.exposure);
+  write_image((dir / "error.png").string(), error_heatmap(last.frame.color, last_reference));
+  nlohmann::json videos = nlohmann::json::object();
+  for (const char* which : {"frame", "reference"}) {
+    std::string video = std::string(which == std::string("frame") ? "video" : "reference") + ".mp4";
+    std::string reason = encode_video((preview_dir / (std::string(which) + "_%04d.png")).string(), 0, options.fps,
+                                      (dir / video).string());
+    videos[which] = reason.empty() ? nlohmann::json("runs/" + run.id + "/" + video) : nlohmann::json(nullptr);
+    if (!reason.empty()) record["warnings"].push_back("no preview: " + reason);
+  }
+  std::error_code ec;
+  fs::remove_all(preview_dir, ec);
+  nlohmann::json params = params_to_json(last.options);
+  params.update(last.method_params);
+  params["frames"] = measured;
+  record["params"] = params;
+  record["spp"] = last.options.spp;
+  record["time_ms"] = median_min_max(frame_times);
+  record["counters"] = last.frame.counters.to_json(frame_ms(last));
+  record["counters"]["method"] = last.frame.method_counters;
+  record["device"] = last.device;
+  record["metrics"] = median_metrics(metrics);
+  record["metrics_raw"] = median_metrics(metrics_raw);
+  record["flicker"] = pairs ? nlohmann::json(std::sqrt(flicker / pairs)) : nlohmann::json(nullptr);
+  record["flicker_raw"] = pairs ? nlohmann::json(std::sqrt(flicker_raw / pairs)) : nlohmann::json(nullptr);
+  record["warmup_frames"] = run.warmup_frames;
+  record["frames"] = frames;
+  record["videos"] = videos;
+  nlohmann::json stages = nlohmann::json::object();
+  for (const nlohmann::json& f : frames)
+    for (const auto& [stage, t] : f["stages"].items()) stages[stage].push_back(t["median"]);
+  for (auto& [stage, values] : stages.items()) stages[stage] = median_min_max(values.get<std::vector<double>>());
+  record["stages"] = stages;
+}
+
 }  // namespace
+
+bool is_sequence_run(const RunSpec& run) {
+  RenderOptions o = run_options(run);
+  return o.frames > 1 || run.warmup_frames > 0 || o.temporal || o.denoise != "none" || o.indirect_scale > 1 ||
+         !run.paths.is_null();
+}
 
 int calibrate_spp(const Scene& scene, const RunSpec& run, double budget_ms, nlohmann::json* probes) {
   const int spp_a = 1, spp_b = 4;
@@ -52,8 +200,26 @@ int calibrate_spp(const Scene& scene, const RunSpec& run, double budget_ms, nloh
   return result;
 }
 
-nlohmann::json execute_run(const Scene& scene, const RunSpec& run, const RunReference& reference,
-                           const std::string& run_dir) {
+nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference& reference,
+                           const FrameReference& frame_reference, const std::string& run_dir) {
+  if (is_sequence_run(run)) {
+    if (run.time_budget_ms > 0.0) throw Error("run " + run.id + ": time_budget_ms is not available for sequences");
+    if (run.repeat > 1) throw Error("run " + run.id + ": repeat times single frames; a sequence's times are medians over its frames");
+    nlohmann::json record = {
+        {"id", run.id},           {"index", run.index},       {"group", run.group},
+        {"label", run.label},     {"scene", run.scene},       {"scene_source", scene.source},
+        {"method", run.options["method"]}, {"variant", run.variant}, {"axes", run.axes},
+        {"seed", run.seed},       {"reference", nullptr},     {"reference_description", nullptr},
+        {"time_budget_ms", nullptr}, {"calibration", nullptr}, {"repeat", 1},
+        {"scene_summary", scene_summary(scene, run_options(run).diffuse_only)},
+        {"images", {{"exr", "runs/" + run.id + "/image.exr"}, {"png", "runs/" + run.id + "/image.png"},
+                    {"error_png", "runs/" + run.id + "/error.png"}}},
+        {"spec_hash", run.spec_hash},
+    };
+    execute_sequence_run(scene, run, frame_reference, run_dir, record);
+    write_json_atomic((fs::path(run_dir) / "run.json").string(), record);
+    return record;
+  }
   nlohmann::json calibration = nullptr;
   int spp = run.time_budget_ms > 0.0 ? calibrate_spp(scene, run, run.time_budget_ms, &calibration) : 0;
   std::vector<RenderResult> renders;

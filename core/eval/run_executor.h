@@ -2,6 +2,7 @@
 // budget, `repeat` timed renders, metrics against the reference, and the run's files, written
 // so that run.json appears last (its presence means the run is complete).
 #pragma once
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -22,9 +23,18 @@ struct RunReference {
   const Image* image = nullptr;
 };
 
+// The reference of a sequence's frame `index`, at `time`, rendered on the scene as posed then.
+using FrameReference = std::function<RunReference(int index, double time, const Scene& posed)>;
+
 // Renders `run` and writes <run_dir>/image.exr, image.png, error.png, then run.json. Returns the
-// run's record (the schema of core/eval/README.md, without the cross-run fields).
-nlohmann::json execute_run(const Scene& scene, const RunSpec& run, const RunReference& reference,
-                           const std::string& run_dir);
+// run's record (the schema of core/eval/README.md, without the cross-run fields). A sequence run
+// (more than one frame, warm-up frames, temporal reuse, a denoiser or upsampling) is measured
+// frame by frame against `frame_reference` instead of `reference`; `scene` is posed while it runs
+// and restored after.
+nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference& reference,
+                           const FrameReference& frame_reference, const std::string& run_dir);
+
+// Whether `run` renders a sequence (see execute_run).
+bool is_sequence_run(const RunSpec& run);
 
 }  // namespace sst

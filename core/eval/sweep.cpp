@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/eval/reference.h"
+#include "core/util/hash.h"
 #include "core/eval/results.h"
 #include "core/eval/run_executor.h"
 #include "core/scene/default_scene.h"
@@ -67,6 +68,24 @@ class ReferenceStore {
     return {spec.id, descriptions_[spec.id], &it->second};
   }
 
+  // The reference of frame `index` of a sequence run, on the scene as posed then: cached on disk
+  // under the run's reference and the frame's time and paths, kept in memory only while it is the
+  // latest (a sequence's references are many and used once per run).
+  RunReference get_frame(const RunSpec& run, const LoadedScene& scene, int index, double time, const Scene& posed) {
+    ReferenceSpec spec = reference_for(run, config_, scene.content_hash);
+    if (spec.kind != "path") throw Error("run " + run.id + ": a sequence needs a 'path' reference (each frame has its own)");
+    nlohmann::json frame = {{"reference", spec.id}, {"index", index}, {"time", time}, {"paths", run.paths}};
+    spec.id = Hash64().add(frame.dump()).hex();
+    nlohmann::json record;
+    frame_image_ = cache_.get(spec, posed, quiet_, &record);
+    fs::path base = fs::path(dir_) / "references" / spec.id;
+    if (!fs::exists(base.string() + ".exr")) write_image(base.string() + ".exr", frame_image_);
+    if (!fs::exists(base.string() + ".png")) write_image(base.string() + ".png", frame_image_);
+    nlohmann::json description = {{"id", spec.id}, {"kind", spec.kind}, {"scene", spec.scene}, {"options", spec.options},
+                                  {"method_params", spec.method_params}, {"frame", index}, {"time", time}};
+    return {spec.id, description, &frame_image_};
+  }
+
  private:
   ReferenceCache cache_;
   std::string dir_;
@@ -74,6 +93,7 @@ class ReferenceStore {
   bool quiet_;
   std::map<std::string, Image> images_;
   std::map<std::string, nlohmann::json> descriptions_;
+  Image frame_image_;
 };
 
 void check_output_dir(const SweepOptions& options, const std::vector<RunSpec>& runs) {
@@ -162,8 +182,13 @@ nlohmann::json run_sweep(const ExperimentConfig& config, const SweepOptions& opt
       continue;
     }
     load_scene(scene, run.scene, options);
-    RunReference reference = references.get(run, scene);
-    records.push_back(execute_run(*scene.scene, run, reference, (fs::path(options.output_dir) / "runs" / run.id).string()));
+    const bool sequence = is_sequence_run(run);
+    RunReference reference = sequence ? RunReference{} : references.get(run, scene);
+    FrameReference frame_reference = [&](int index, double time, const Scene& posed) {
+      return references.get_frame(run, scene, index, time, posed);
+    };
+    records.push_back(execute_run(*scene.scene, run, reference, frame_reference,
+                                  (fs::path(options.output_dir) / "runs" / run.id).string()));
     ++rendered;
     if (!options.quiet) report_progress(++finished, mine.size(), rendered, to_render, start, records.back());
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/metrics/same_shape.h"
+#include "core/util/error.h"
 
 namespace sst {
 namespace {
@@ -132,6 +133,19 @@ nlohmann::json to_json(const ImageMetrics& m) {
           {"mean_reference", rgb(m.mean_reference)},
           {"nonfinite_test", m.nonfinite_test},
           {"nonfinite_reference", m.nonfinite_reference}};
+}
+
+double flicker_mse(const Image& test0, const Image& test1, const Image& reference0, const Image& reference1) {
+  for (const Image* i : {&test1, &reference0, &reference1})
+    if (i->width != test0.width || i->height != test0.height || i->channels != test0.channels)
+      throw Error("flicker: frames of different sizes");
+  auto finite = [](float v) { return std::isfinite(v) ? double(v) : 0.0; };
+  double sum = 0.0;
+  for (size_t i = 0; i < test0.data.size(); ++i) {
+    double d = (finite(test1.data[i]) - finite(test0.data[i])) - (finite(reference1.data[i]) - finite(reference0.data[i]));
+    sum += d * d;
+  }
+  return test0.data.empty() ? 0.0 : sum / double(test0.data.size());
 }
 
 }  // namespace sst

@@ -6,6 +6,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <thread>
@@ -129,6 +130,54 @@ TEST(SstEvalSweep, TablePrintsMarkdownAndCsv) {
   test::CommandResult csv = eval("table " + (dir / "out/results.json").string() + " --format csv");
   EXPECT_EQ(csv.output.rfind("method,spp,frame ms", 0), 0u) << csv.output;
   EXPECT_EQ(eval("table " + (dir / "out").string() + " --format xml").exit_code, 1);
+}
+
+}  // namespace
+}  // namespace sst
+
+namespace sst {
+namespace {
+
+// A sequence sweep end to end: warm-up and measured frames, per-frame references, raw and output
+// metrics, flicker, videos, and the report's sequence table and per-frame plots.
+TEST(SstEvalSweep, SequencesAreMeasuredFrameByFrameWithFlicker) {
+  fs::path dir = test::temp_dir();
+  const json config = {{"width", 24},
+                       {"height", 24},
+                       {"spp", 1},
+                       {"vpls", 500},
+                       {"frames", 3},
+                       {"warmup_frames", 2},
+                       {"temporal", true},
+                       {"paths", json::parse(R"([{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 15}]}])")},
+                       {"axes", {{"method", {"pt", "sst"}}, {"denoise", {"none", "svgf"}}}},
+                       {"reference", {{"spp", 16}}}};
+  fs::path cfg = write_config(dir, config);
+  test::CommandResult r = eval("sweep " + cfg.string() + " -q -o " + (dir / "out").string() + " --cache-dir " +
+                               (dir / "cache").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json results = read_json_file((dir / "out" / "results.json").string());
+  ASSERT_EQ(results["runs"].size(), 4u);
+  std::set<std::string> references;
+  for (const json& run : results["runs"]) {
+    ASSERT_EQ(run["frames"].size(), 3u) << run["id"];
+    EXPECT_EQ(run["warmup_frames"], 2);
+    EXPECT_EQ(run["frames"][0]["index"], 2);  // after the warm-up
+    for (const json& f : run["frames"]) references.insert(f["reference"].get<std::string>());
+    EXPECT_TRUE(run["flicker"].is_number()) << run.dump();
+    EXPECT_TRUE(run["flicker_raw"].is_number());
+    EXPECT_TRUE(run["metrics_raw"]["rmse"].is_number());
+    // Temporal reuse makes the output steadier than the raw frames it comes from.
+    EXPECT_LT(run["flicker"].get<double>(), run["flicker_raw"].get<double>()) << run["id"];
+    EXPECT_TRUE(fs::exists(dir / "out" / "runs" / run["id"].get<std::string>() / "image.exr"));
+    if (!run["videos"]["frame"].is_null()) EXPECT_TRUE(fs::exists(dir / "out" / run["videos"]["frame"].get<std::string>()));
+  }
+  // One reference per measured frame, shared by the runs (the same pose and reference settings).
+  EXPECT_EQ(references.size(), 3u);
+  std::ifstream report(dir / "out" / "report.html");
+  std::string html((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("flicker out"), std::string::npos);
+  EXPECT_NE(html.find("RMSE per frame"), std::string::npos);
 }
 
 }  // namespace

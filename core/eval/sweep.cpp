@@ -10,6 +10,7 @@
 #include "core/util/hash.h"
 #include "core/eval/results.h"
 #include "core/eval/run_executor.h"
+#include "core/scene/animation.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene_search.h"
@@ -74,6 +75,8 @@ class ReferenceStore {
   RunReference get_frame(const RunSpec& run, const LoadedScene& scene, int index, double time, const Scene& posed) {
     ReferenceSpec spec = reference_for(run, config_, scene.content_hash);
     if (spec.kind != "path") throw Error("run " + run.id + ": a sequence needs a 'path' reference (each frame has its own)");
+    // Nothing moves: every frame has the run's one reference.
+    if (run.paths.is_null() && !posed.animation) return get(run, scene);
     nlohmann::json frame = {{"reference", spec.id}, {"index", index}, {"time", time}, {"paths", run.paths}};
     spec.id = Hash64().add(frame.dump()).hex();
     nlohmann::json record;

@@ -70,8 +70,9 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
 #endif
 }
 
-RenderResult FrameRenderer::render(const Scene& scene, const Camera& camera, uint32_t seed, int width, int height) {
-  return render_with(*method_, vulkan_method_.get(), options_.method, scene, camera, seed, width, height);
+RenderResult FrameRenderer::render(const Scene& scene, const Camera& camera, uint32_t seed, int width, int height,
+                                   int frame) {
+  return render_with(*method_, vulkan_method_.get(), options_.method, scene, camera, seed, width, height, frame);
 }
 
 RenderResult FrameRenderer::render_direct(const Scene& scene, const Camera& camera, uint32_t seed) {
@@ -81,12 +82,12 @@ RenderResult FrameRenderer::render_direct(const Scene& scene, const Camera& came
     if (options_.backend == "vulkan") vulkan_direct_ = gpu::make_vulkan_method(*direct_, "pt");
 #endif
   }
-  return render_with(*direct_, vulkan_direct_.get(), "pt", scene, camera, seed, 0, 0);
+  return render_with(*direct_, vulkan_direct_.get(), "pt", scene, camera, seed, 0, 0, 0);
 }
 
 RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& name,
                                         const Scene& scene, const Camera& camera, uint32_t seed, int width,
-                                        int height) {
+                                        int height, int frame) {
   if (!accel_) throw Error("FrameRenderer::render before prepare");
   RenderResult result;
   result.options = options_;
@@ -102,7 +103,7 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
   result.device = device_;
   PinholeCamera pinhole(camera, result.options.width, result.options.height);
   RenderContext context{scene,          *accel_,         *lights_, pinhole, result.options, result.options.width,
-                        result.options.height, quiet_};
+                        result.options.height, quiet_,   frame};
 #ifdef SST_HAVE_VULKAN
   if (vulkan_method) {
     result.frame = vulkan_method->render(context, *gpu_, result.timer);

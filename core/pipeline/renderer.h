@@ -44,7 +44,9 @@ class FrameRenderer {
   void prepare(const Scene& scene, StageTimer& timer);
   // One frame of the prepared scene seen by `camera` (as posed), at `width` x `height` (0: the
   // options'), with `seed`. The result's timer holds the method's stages.
-  RenderResult render(const Scene& scene, const Camera& camera, uint32_t seed, int width = 0, int height = 0);
+  // `frame`: the frame's index in its sequence (RenderContext::frame).
+  RenderResult render(const Scene& scene, const Camera& camera, uint32_t seed, int width = 0, int height = 0,
+                      int frame = 0);
   // The same frame's direct light and first-hit AOVs only (the path tracer with no bounce: what
   // every method's direct pass computes), for a frame whose indirect light is rendered apart.
   RenderResult render_direct(const Scene& scene, const Camera& camera, uint32_t seed);
@@ -56,7 +58,7 @@ class FrameRenderer {
 
  private:
   RenderResult render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& method_name,
-                           const Scene& scene, const Camera& camera, uint32_t seed, int width, int height);
+                           const Scene& scene, const Camera& camera, uint32_t seed, int width, int height, int frame);
 
   RenderOptions options_;
   bool quiet_;

@@ -143,12 +143,12 @@ class SequenceRunner {
                      [&] { return centre_gbuffer(renderer_.accel(), scene_, history_.positions, view, history_.view); });
     PostStages post(renderer_, timer);
     if (options_.indirect_scale > 1) {
-      out.result = render_split(camera, seed, g, timer, post);
+      out.result = render_split(camera, seed, out.index, g, timer, post);
     } else {
-      out.result = renderer_.render(scene_, camera, seed, w, h);
+      out.result = renderer_.render(scene_, camera, seed, w, h, out.index);
       add_stages(timer, out.result.timer);
     }
-    if (gbuffer_) post_process(out.result.frame, g, post);
+    if (gbuffer_) post_process(out.result.frame, g, post, timer);
     out.result.timer = timer;
     out.result.options = options_;
     out.result.options.seed = seed;
@@ -165,23 +165,26 @@ class SequenceRunner {
   // low resolution for its indirect light, which joint bilateral upsampling brings to full
   // resolution, guided by the two frames' pixel-centre G-buffers. Its stages: the direct render's
   // as "direct_<stage>", the method's own, "gbuffer_low" and "upsample".
-  RenderResult render_split(const Camera& camera, uint32_t seed, const CentreGBuffer& g, StageTimer& timer,
-                            PostStages& post) {
+  RenderResult render_split(const Camera& camera, uint32_t seed, int frame, const CentreGBuffer& g,
+                            StageTimer& timer, PostStages& post) {
     const int s = options_.indirect_scale;
     const int lw = std::max(1, options_.width / s), lh = std::max(1, options_.height / s);
     RenderResult full = renderer_.render_direct(scene_, camera, seed);
     add_stages(timer, full.timer, "direct_");
-    RenderResult low = renderer_.render(scene_, camera, seed, lw, lh);
+    RenderResult low = renderer_.render(scene_, camera, seed, lw, lh, frame);
     add_stages(timer, low.timer);
     glsl::ViewParams low_view = view_params(PinholeCamera(camera, lw, lh), lw, lh, 0);
     CentreGBuffer low_g = timer.time("gbuffer_low", [&] {
       return centre_gbuffer(renderer_.accel(), scene_, scene_.positions, low_view, low_view);
     });
-    Image up = post.upsample(demodulate(low.frame.indirect, low_g.albedo), low_g, g, options_.upsample);
+    Image low_light = timer.time("post_convert", [&] { return demodulate(low.frame.indirect, low_g.albedo); });
+    Image up = post.upsample(low_light, low_g, g, options_.upsample);
     RenderResult result = std::move(full);
     result.method_params = low.method_params;
-    result.frame.indirect = remodulate(up, g.albedo);
-    result.frame.color = sum(result.frame.direct, result.frame.indirect);
+    timer.time("post_convert", [&] {
+      result.frame.indirect = remodulate(up, g.albedo);
+      result.frame.color = sum(result.frame.direct, result.frame.indirect);
+    });
     result.frame.counters += low.frame.counters;
     result.frame.method_counters = low.frame.method_counters;
     result.frame.extra_layers.clear();
@@ -189,22 +192,29 @@ class SequenceRunner {
   }
 
   // Temporal reuse and denoising of the frame's light, in place; the frame keeps its unfiltered
-  // image as the layer "raw" and gains "motion".
-  void post_process(FrameOutput& f, const CentreGBuffer& g, PostStages& post) {
+  // image as the layer "raw" and gains "motion". The host's conversions between the stages
+  // (demodulation, packing the per-pixel inputs, reading the history back into images) are timed
+  // as "post_convert".
+  void post_process(FrameOutput& f, const CentreGBuffer& g, PostStages& post, StageTimer& timer) {
     const int w = f.color.width, h = f.color.height;
     Image raw = f.color;
     Image direct, indirect;
     TemporalImages indirect_history;
     if (reuse_) {
-      std::vector<TemporalInput> input =
-          temporal_inputs(f.direct, f.indirect, g.albedo, g.depth, g.normal, g.motion, g.previous_depth);
+      std::vector<TemporalInput> input = timer.time("post_convert", [&] {
+        return temporal_inputs(f.direct, f.indirect, g.albedo, g.depth, g.normal, g.motion, g.previous_depth);
+      });
       history_.temporal = post.temporal(input, history_.temporal, temporal_push(options_.temporal_params, w, h));
-      direct = temporal_images(history_.temporal, w, h, true).illumination;
-      indirect_history = temporal_images(history_.temporal, w, h, false);
-      indirect = indirect_history.illumination;
+      timer.time("post_convert", [&] {
+        direct = temporal_images(history_.temporal, w, h, true).illumination;
+        indirect_history = temporal_images(history_.temporal, w, h, false);
+        indirect = indirect_history.illumination;
+      });
     } else {
-      direct = demodulate(f.direct, g.albedo);
-      indirect = demodulate(f.indirect, g.albedo);
+      timer.time("post_convert", [&] {
+        direct = demodulate(f.direct, g.albedo);
+        indirect = demodulate(f.indirect, g.albedo);
+      });
     }
     if (options_.denoise == "atrous") {
       indirect = post.atrous(indirect, g.depth, g.normal, options_.atrous);
@@ -212,14 +222,18 @@ class SequenceRunner {
       SvgfSpatialResult s = post.svgf(indirect_history, g.depth, g.normal, options_.svgf);
       indirect = s.filtered;
       // SVGF's feedback: the history continues from the first a-trous level's output.
-      for (size_t i = 0; i < history_.temporal.size(); ++i)
-        history_.temporal[i].indirect = s.level1.rgb(int(i % size_t(w)), int(i / size_t(w)));
+      timer.time("post_convert", [&] {
+        for (size_t i = 0; i < history_.temporal.size(); ++i)
+          history_.temporal[i].indirect = s.level1.rgb(int(i % size_t(w)), int(i / size_t(w)));
+      });
       f.extra_layers.push_back({"variance", s.variance});
     }
     if (reuse_ || options_.denoise != "none") {
-      f.direct = remodulate(direct, g.albedo);
-      f.indirect = remodulate(indirect, g.albedo);
-      f.color = sum(f.direct, f.indirect);
+      timer.time("post_convert", [&] {
+        f.direct = remodulate(direct, g.albedo);
+        f.indirect = remodulate(indirect, g.albedo);
+        f.color = sum(f.direct, f.indirect);
+      });
       f.extra_layers.push_back({"raw", raw});
     }
     f.extra_layers.push_back({"motion", g.motion});

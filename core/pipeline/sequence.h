@@ -24,7 +24,7 @@ struct SequenceFrame {
   // holds the setup stages the frame paid (when posing moved geometry or lights), the method's
   // stages and those of post-processing: "direct" (half-resolution indirect only), "upsample",
   // "gbuffer" (the pixel centres' G-buffer and motion, core/render/centre_gbuffer.h), "temporal",
-  // "denoise".
+  // "denoise", and "post_convert" (the host's conversions between them).
   RenderResult result;
 };
 

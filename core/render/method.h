@@ -30,6 +30,9 @@ struct RenderContext {
   const RenderOptions& options;
   int width, height;
   bool quiet = false;
+  // The frame's index in its sequence (0 for a single frame), for methods that spread work over
+  // frames (rtslc's interleaved sampling takes another slot of each tile every frame).
+  int frame = 0;
 };
 
 class Method {

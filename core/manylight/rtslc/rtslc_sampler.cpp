@@ -92,7 +92,7 @@ void RtslcSampler::build(const VplLighting& lighting, StageTimer& timer, nlohman
   set_cut_inputs(cuts_, inputs);
   inputs.params.rtslc_interleave = uint32_t(params_.interleave);
   inputs.params.rtslc_weights = weights_id(weights_);
-  inputs.params.rtslc_frame_index = frame_index_;
+  inputs.params.rtslc_frame_index = uint32_t(ctx.frame);
 }
 
 }  // namespace sst

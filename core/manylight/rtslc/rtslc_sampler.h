@@ -35,7 +35,8 @@ struct RtslcParams {
     v("cut_size", cut_size, "M: nodes per light cut (1..32); one traversal from each per indirect sample");
     v("interleave", interleave,
       "interleaved sampling rate r (1, 2 or 4): pixel s of an r x r tile evaluates the cut nodes i with i mod r^2 = "
-      "s, weighted by r^2 (unbiased over the tile, not per pixel)");
+      "(s + frame) mod r^2, weighted by r^2 (unbiased over the tile, not per pixel; across frames each pixel takes "
+      "every slot in turn, as the paper interleaves over time)");
     v("weights", weights,
       "traversal weights: rtslc (Lin & Yuksel 2020: mean of the min- and max-distance weights) or slc (Yuksel 2019: "
       "min distance, as the slc method; for equal-sample comparisons)");
@@ -77,7 +78,6 @@ class RtslcSampler final : public TreeSamplerBase {
   RtslcParams params_;
   RtslcWeights weights_ = RtslcWeights::rtslc;  // params_.weights, parsed
   BlockCuts cuts_;  // built at each block's random pivot pixel
-  uint32_t frame_index_ = 0;  // interleaving offset; single frames use 0
 };
 
 }  // namespace sst

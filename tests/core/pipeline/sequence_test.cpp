@@ -232,3 +232,29 @@ TEST(Sequence, DenoisersKeepTheMeanOfTheBreakfastRoom) {
 
 }  // namespace
 }  // namespace sst
+
+namespace sst {
+namespace {
+
+// RTSLC interleaves its cut samples over time: the same seed renders another slot of each tile in
+// the next frame, and nothing changes without interleaving.
+TEST(Sequence, RtslcInterleavesItsCutNodesAcrossFrames) {
+  Scene scene = load_default_scene();
+  auto image = [&](int interleave, int frame) {
+    RenderOptions o;
+    o.method = "rtslc";
+    o.width = 24;
+    o.height = 24;
+    o.spp = 1;
+    FrameRenderer renderer(o, {{"vpls", 2000}, {"interleave", interleave}}, true);
+    StageTimer t;
+    renderer.prepare(scene, t);
+    return renderer.render(scene, scene.cameras[0], 5, 0, 0, frame).frame.indirect.data;
+  };
+  EXPECT_EQ(image(1, 0), image(1, 1));
+  EXPECT_NE(image(2, 0), image(2, 1));
+  EXPECT_EQ(image(2, 0), image(2, 4));  // r^2 = 4 slots: frame 4 takes frame 0's again
+}
+
+}  // namespace
+}  // namespace sst

@@ -94,9 +94,45 @@ const Image& layer_or(const FrameOutput& frame, const char* name, const Image& f
 // metrics of the output and of the raw frame (before reuse and denoising), their medians, and the
 // flicker of both (core/metrics/metrics.h): the record's "metrics" are the medians, so tables and
 // reports read sequences as they read single frames.
+// Median frame time (every stage of a frame, post-processing included) of a short sequence of the
+// run at `spp`, without warm-up or references: a probe for equal-time calibration.
+double sequence_probe_ms(Scene& scene, const RunSpec& run, int spp) {
+  RenderOptions options = run_options(run);
+  options.spp = spp;
+  options.frames = 3;
+  PoseRestorer restore(scene);
+  std::vector<KeyFramePath> paths = parse_key_frame_paths(run.paths, scene, "paths");
+  std::vector<double> times;
+  render_sequence(scene, paths, options, run.method_params, true, [&](SequenceFrame& f) {
+    // The first frame pays for the device's and the history's first touch.
+    if (f.index > options.frame_start) times.push_back(frame_ms(f.result));
+  });
+  return median(times);
+}
+
+// Equal time for a sequence: the spp whose frame time meets the budget, from the linear model of
+// calibrate_spp fitted to two probe sequences (1 and 4 spp). Post-processing costs the same at
+// any spp, so it lands in the model's fixed time.
+int calibrate_sequence_spp(Scene& scene, const RunSpec& run, double budget_ms, nlohmann::json& calibration) {
+  const int spp_a = 1, spp_b = 4;
+  double t_a = sequence_probe_ms(scene, run, spp_a), t_b = sequence_probe_ms(scene, run, spp_b);
+  double per_spp = std::max((t_b - t_a) / (spp_b - spp_a), 1e-6);
+  double fixed = std::max(t_a - per_spp * spp_a, 0.0);
+  int spp = int(std::clamp(std::round((budget_ms - fixed) / per_spp), 1.0, double(kMaxCalibratedSpp)));
+  calibration = {{"spp", {spp_a, spp_b}}, {"frame_ms", {t_a, t_b}}, {"fixed_ms", fixed}, {"per_spp_ms", per_spp},
+                 {"probe_frames", 3}};
+  return spp;
+}
+
 void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference& frame_reference,
                           const std::string& run_dir, nlohmann::json& record) {
   RenderOptions options = run_options(run);
+  if (run.time_budget_ms > 0.0) {
+    nlohmann::json calibration;
+    options.spp = calibrate_sequence_spp(scene, run, run.time_budget_ms, calibration);
+    record["calibration"] = calibration;
+    record["time_budget_ms"] = run.time_budget_ms;
+  }
   const int measured = options.frames;
   options.frames = run.warmup_frames + measured;
   PoseRestorer restore(scene);
@@ -203,7 +239,6 @@ int calibrate_spp(const Scene& scene, const RunSpec& run, double budget_ms, nloh
 nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference& reference,
                            const FrameReference& frame_reference, const std::string& run_dir) {
   if (is_sequence_run(run)) {
-    if (run.time_budget_ms > 0.0) throw Error("run " + run.id + ": time_budget_ms is not available for sequences");
     if (run.repeat > 1) throw Error("run " + run.id + ": repeat times single frames; a sequence's times are medians over its frames");
     nlohmann::json record = {
         {"id", run.id},           {"index", run.index},       {"group", run.group},

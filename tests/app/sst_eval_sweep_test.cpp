@@ -180,5 +180,21 @@ TEST(SstEvalSweep, SequencesAreMeasuredFrameByFrameWithFlicker) {
   EXPECT_NE(html.find("RMSE per frame"), std::string::npos);
 }
 
+TEST(SstEvalSweep, SequencesAreCalibratedToATimeBudget) {
+  fs::path dir = test::temp_dir();
+  const json config = {{"width", 24}, {"height", 24}, {"frames", 2}, {"temporal", true}, {"method", "pt"},
+                       {"time_budget_ms", 50.0}, {"reference", {{"spp", 8}}}};
+  fs::path cfg = write_config(dir, config);
+  test::CommandResult r = eval("sweep " + cfg.string() + " -q -o " + (dir / "out").string() + " --cache-dir " +
+                               (dir / "cache").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  json run = read_json_file((dir / "out" / "results.json").string())["runs"][0];
+  EXPECT_EQ(run["time_budget_ms"], 50.0);
+  ASSERT_TRUE(run["calibration"].is_object()) << run.dump();
+  EXPECT_GT(run["calibration"]["per_spp_ms"].get<double>(), 0.0);
+  // A 24x24 path-traced frame takes well under a millisecond per spp: the budget buys many.
+  EXPECT_GT(run["spp"].get<int>(), 4);
+}
+
 }  // namespace
 }  // namespace sst

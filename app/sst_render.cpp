@@ -136,10 +136,6 @@ std::vector<sst::KeyFramePath> load_paths(const Args& args, const sst::Scene& sc
   return sst::parse_key_frame_paths(j, scene, args.paths_file);
 }
 
-bool is_sequence(const sst::RenderOptions& o) {
-  return o.frames > 1 || o.temporal || o.denoise != "none" || o.indirect_scale > 1;
-}
-
 // A sequence (or a frame with post-processing): each frame is written as soon as it is finished,
 // with the JSON record rewritten after it, so an interrupted run keeps every finished frame.
 int run_sequence(const Args& args, sst::Scene& scene, const sst::RenderOptions& options,
@@ -232,7 +228,7 @@ int run(const Args& args, const sst::app::ParamFlags& flags) {
   sst::Scene scene = load_timer.time("load", [&] { return load_scene(args); });
   for (const std::string& w : scene.warnings)
     if (!args.quiet) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (is_sequence(options) || !args.paths_file.empty()) return run_sequence(args, scene, options, method_params, load_timer);
+  if (sst::renders_sequence(options) || !args.paths_file.empty()) return run_sequence(args, scene, options, method_params, load_timer);
 
   std::vector<sst::RenderResult> runs;
   for (int i = 0; i < args.repeat; ++i) runs.push_back(sst::render_frame(scene, options, method_params, args.quiet));

@@ -42,6 +42,36 @@ int refine_spp(int spp, double measured_ms, double budget_ms, nlohmann::json& ca
   return int(std::clamp(std::round((budget_ms - fixed) / per_spp), 1.0, double(kMaxCalibratedSpp)));
 }
 
+// The spp whose frame time meets `budget_ms` under the linear model t = fixed + per_spp * spp
+// through two probes: `t_a` ms at kProbeSpp[0] and `t_b` at kProbeSpp[1]. `calibration` receives
+// the model.
+constexpr int kProbeSpp[2] = {1, 4};
+int spp_for_budget(double t_a, double t_b, double budget_ms, nlohmann::json& calibration) {
+  double per_spp = std::max((t_b - t_a) / (kProbeSpp[1] - kProbeSpp[0]), 1e-6);
+  double fixed = std::max(t_a - per_spp * kProbeSpp[0], 0.0);
+  calibration = {{"spp", {kProbeSpp[0], kProbeSpp[1]}}, {"frame_ms", {t_a, t_b}}, {"fixed_ms", fixed},
+                 {"per_spp_ms", per_spp}};
+  return int(std::clamp(std::round((budget_ms - fixed) / per_spp), 1.0, double(kMaxCalibratedSpp)));
+}
+
+// What identifies a run in its record, whatever it renders.
+nlohmann::json run_identity(const RunSpec& run, const Scene& scene) {
+  return {{"id", run.id},
+          {"index", run.index},
+          {"group", run.group},
+          {"label", run.label},
+          {"scene", run.scene},
+          {"scene_source", scene.source},
+          {"method", run.options["method"]},
+          {"variant", run.variant},
+          {"axes", run.axes},
+          {"seed", run.seed},
+          {"images",
+           {{"exr", "runs/" + run.id + "/image.exr"}, {"png", "runs/" + run.id + "/image.png"},
+            {"error_png", "runs/" + run.id + "/error.png"}}},
+          {"spec_hash", run.spec_hash}};
+}
+
 RenderOptions run_options(const RunSpec& run) {
   RenderOptions options;
   params_from_json(options, run.options, "run " + run.id);
@@ -90,10 +120,6 @@ const Image& layer_or(const FrameOutput& frame, const char* name, const Image& f
   return fallback;
 }
 
-// A sequence run: warm-up frames, then measured frames, each against its own reference. Per-frame
-// metrics of the output and of the raw frame (before reuse and denoising), their medians, and the
-// flicker of both (core/metrics/metrics.h): the record's "metrics" are the medians, so tables and
-// reports read sequences as they read single frames.
 // Median frame time (every stage of a frame, post-processing included) of a short sequence of the
 // run at `spp`, without warm-up or references: a probe for equal-time calibration.
 double sequence_probe_ms(Scene& scene, const RunSpec& run, int spp) {
@@ -114,16 +140,16 @@ double sequence_probe_ms(Scene& scene, const RunSpec& run, int spp) {
 // calibrate_spp fitted to two probe sequences (1 and 4 spp). Post-processing costs the same at
 // any spp, so it lands in the model's fixed time.
 int calibrate_sequence_spp(Scene& scene, const RunSpec& run, double budget_ms, nlohmann::json& calibration) {
-  const int spp_a = 1, spp_b = 4;
-  double t_a = sequence_probe_ms(scene, run, spp_a), t_b = sequence_probe_ms(scene, run, spp_b);
-  double per_spp = std::max((t_b - t_a) / (spp_b - spp_a), 1e-6);
-  double fixed = std::max(t_a - per_spp * spp_a, 0.0);
-  int spp = int(std::clamp(std::round((budget_ms - fixed) / per_spp), 1.0, double(kMaxCalibratedSpp)));
-  calibration = {{"spp", {spp_a, spp_b}}, {"frame_ms", {t_a, t_b}}, {"fixed_ms", fixed}, {"per_spp_ms", per_spp},
-                 {"probe_frames", 3}};
+  double t_a = sequence_probe_ms(scene, run, kProbeSpp[0]), t_b = sequence_probe_ms(scene, run, kProbeSpp[1]);
+  int spp = spp_for_budget(t_a, t_b, budget_ms, calibration);
+  calibration["probe_frames"] = 3;
   return spp;
 }
 
+// A sequence run: warm-up frames, then measured frames, each against its own reference. Per-frame
+// metrics of the output and of the raw frame (before reuse and denoising), their medians, and the
+// flicker of both (core/metrics/metrics.h): the record's "metrics" are the medians, so tables and
+// reports read sequences as they read single frames.
 void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference& frame_reference,
                           const std::string& run_dir, nlohmann::json& record) {
   RenderOptions options = run_options(run);
@@ -217,40 +243,31 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
 }  // namespace
 
 bool is_sequence_run(const RunSpec& run) {
-  RenderOptions o = run_options(run);
-  return o.frames > 1 || run.warmup_frames > 0 || o.temporal || o.denoise != "none" || o.indirect_scale > 1 ||
-         !run.paths.is_null();
+  return renders_sequence(run_options(run)) || run.warmup_frames > 0 || !run.paths.is_null();
 }
 
 int calibrate_spp(const Scene& scene, const RunSpec& run, double budget_ms, nlohmann::json* probes) {
-  const int spp_a = 1, spp_b = 4;
   // The faster of two renders per probe: timing noise only ever adds time.
   auto probe = [&](int spp) { return std::min(frame_ms(render_run(scene, run, spp)), frame_ms(render_run(scene, run, spp))); };
-  double t_a = probe(spp_a);
-  double t_b = probe(spp_b);
-  double per_spp = std::max((t_b - t_a) / (spp_b - spp_a), 1e-6);
-  double fixed = std::max(t_a - per_spp * spp_a, 0.0);
-  double spp = std::round((budget_ms - fixed) / per_spp);
-  int result = int(std::clamp(spp, 1.0, double(kMaxCalibratedSpp)));
-  if (probes) *probes = {{"spp", {spp_a, spp_b}}, {"frame_ms", {t_a, t_b}}, {"fixed_ms", fixed}, {"per_spp_ms", per_spp}};
-  return result;
+  double t_a = probe(kProbeSpp[0]);
+  double t_b = probe(kProbeSpp[1]);
+  nlohmann::json calibration;
+  int spp = spp_for_budget(t_a, t_b, budget_ms, calibration);
+  if (probes) *probes = calibration;
+  return spp;
 }
 
 nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference& reference,
                            const FrameReference& frame_reference, const std::string& run_dir) {
   if (is_sequence_run(run)) {
     if (run.repeat > 1) throw Error("run " + run.id + ": repeat times single frames; a sequence's times are medians over its frames");
-    nlohmann::json record = {
-        {"id", run.id},           {"index", run.index},       {"group", run.group},
-        {"label", run.label},     {"scene", run.scene},       {"scene_source", scene.source},
-        {"method", run.options["method"]}, {"variant", run.variant}, {"axes", run.axes},
-        {"seed", run.seed},       {"reference", nullptr},     {"reference_description", nullptr},
-        {"time_budget_ms", nullptr}, {"calibration", nullptr}, {"repeat", 1},
-        {"scene_summary", scene_summary(scene, run_options(run).diffuse_only)},
-        {"images", {{"exr", "runs/" + run.id + "/image.exr"}, {"png", "runs/" + run.id + "/image.png"},
-                    {"error_png", "runs/" + run.id + "/error.png"}}},
-        {"spec_hash", run.spec_hash},
-    };
+    nlohmann::json record = run_identity(run, scene);
+    record.update({{"reference", nullptr},
+                   {"reference_description", nullptr},
+                   {"time_budget_ms", nullptr},
+                   {"calibration", nullptr},
+                   {"repeat", 1},
+                   {"scene_summary", scene_summary(scene, run_options(run).diffuse_only)}});
     execute_sequence_run(scene, run, frame_reference, run_dir, record);
     write_json_atomic((fs::path(run_dir) / "run.json").string(), record);
     return record;
@@ -284,17 +301,8 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
 
   nlohmann::json params = params_to_json(last.options);
   params.update(last.method_params);
-  nlohmann::json record = {
-      {"id", run.id},
-      {"index", run.index},
-      {"group", run.group},
-      {"label", run.label},
-      {"scene", run.scene},
-      {"scene_source", scene.source},
-      {"method", last.options.method},
-      {"variant", run.variant},
-      {"axes", run.axes},
-      {"seed", run.seed},
+  nlohmann::json record = run_identity(run, scene);
+  record.update({
       {"params", params},
       {"reference", reference.id},
       {"reference_description", reference.description},
@@ -308,10 +316,7 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
       {"device", last.device},
       {"scene_summary", scene_summary(scene, last.options.diffuse_only)},
       {"metrics", to_json(metrics)},
-      {"images",
-       {{"exr", "runs/" + run.id + "/image.exr"}, {"png", "runs/" + run.id + "/image.png"}, {"error_png", "runs/" + run.id + "/error.png"}}},
-      {"spec_hash", run.spec_hash},
-  };
+  });
   record["counters"]["method"] = last.frame.method_counters;
   write_json_atomic((dir / "run.json").string(), record);
   return record;

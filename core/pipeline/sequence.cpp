@@ -18,6 +18,10 @@
 
 namespace sst {
 
+bool renders_sequence(const RenderOptions& o) {
+  return o.frames > 1 || o.temporal || o.denoise != "none" || o.indirect_scale > 1;
+}
+
 uint32_t frame_seed(uint32_t seed, int index) {
   if (index == 0) return seed;
   return pcg_hash(seed ^ pcg_hash(uint32_t(index) * 0x9E3779B9u));
@@ -76,10 +80,11 @@ class PostStages {
 #ifdef SST_HAVE_VULKAN
     if (const gpu::GpuRenderContext* g = renderer_.gpu())
       return on_gpu("denoise", [&] {
-        return gpu::svgf_spatial(g->vulkan(), t.illumination, t.moments, t.frames, depth, normal, p);
+        return gpu::svgf_spatial(g->vulkan(), t.indirect, t.indirect_moments, t.frames, depth, normal, p);
       });
 #endif
-    return timer_.time("denoise", [&] { return svgf_spatial(t.illumination, t.moments, t.frames, depth, normal, p); });
+    return timer_.time("denoise",
+                       [&] { return svgf_spatial(t.indirect, t.indirect_moments, t.frames, depth, normal, p); });
   }
 
   Image upsample(const Image& low, const CentreGBuffer& low_g, const CentreGBuffer& g, const UpsampleParams& p) {
@@ -116,7 +121,7 @@ class SequenceRunner {
     resolve_resolution(scene.cameras[size_t(camera_index_)], options_.width, options_.height);
     validate(options_);
     reuse_ = options_.temporal || options_.denoise == "svgf";
-    gbuffer_ = reuse_ || options_.frames > 1 || options_.denoise != "none" || options_.indirect_scale > 1;
+    gbuffer_ = renders_sequence(options_);
   }
 
   SequenceFrame frame(int position) {
@@ -154,8 +159,8 @@ class SequenceRunner {
     out.result.options.seed = seed;
     history_.valid = true;
     history_.view = view;
-    // Only animated geometry changes the vertices; a static scene's stay those of the first frame.
-    if (scene_.positions != history_.positions) history_.positions = scene_.positions;
+    // Only posing moves vertices; a static scene's stay those of the first frame.
+    if (moved.geometry) history_.positions = scene_.positions;
     return out;
   }
 
@@ -199,16 +204,16 @@ class SequenceRunner {
     const int w = f.color.width, h = f.color.height;
     Image raw = f.color;
     Image direct, indirect;
-    TemporalImages indirect_history;
+    TemporalImages history;
     if (reuse_) {
       std::vector<TemporalInput> input = timer.time("post_convert", [&] {
         return temporal_inputs(f.direct, f.indirect, g.albedo, g.depth, g.normal, g.motion, g.previous_depth);
       });
       history_.temporal = post.temporal(input, history_.temporal, temporal_push(options_.temporal_params, w, h));
       timer.time("post_convert", [&] {
-        direct = temporal_images(history_.temporal, w, h, true).illumination;
-        indirect_history = temporal_images(history_.temporal, w, h, false);
-        indirect = indirect_history.illumination;
+        history = temporal_images(history_.temporal, w, h);
+        direct = history.direct;
+        indirect = history.indirect;
       });
     } else {
       timer.time("post_convert", [&] {
@@ -219,7 +224,7 @@ class SequenceRunner {
     if (options_.denoise == "atrous") {
       indirect = post.atrous(indirect, g.depth, g.normal, options_.atrous);
     } else if (options_.denoise == "svgf") {
-      SvgfSpatialResult s = post.svgf(indirect_history, g.depth, g.normal, options_.svgf);
+      SvgfSpatialResult s = post.svgf(history, g.depth, g.normal, options_.svgf);
       indirect = s.filtered;
       // SVGF's feedback: the history continues from the first a-trous level's output.
       timer.time("post_convert", [&] {

@@ -28,6 +28,11 @@ struct SequenceFrame {
   RenderResult result;
 };
 
+// Whether `options` ask for more than render_frame gives: several frames, temporal reuse, a
+// denoiser or half-resolution indirect light (then every frame also gets the pixel-centre G-buffer
+// and its motion layer).
+bool renders_sequence(const RenderOptions& options);
+
 // The seed of frame `index`: the run's seed for frame 0, a hash of both after, so every frame
 // draws its own random numbers and a frame's image does not depend on where the sequence began.
 uint32_t frame_seed(uint32_t seed, int index);

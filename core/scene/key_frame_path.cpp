@@ -52,6 +52,15 @@ vec3 orthonormal_up(vec3 forward, vec3 up, const std::string& what) {
   return u / len;
 }
 
+// Where a key puts its camera or light: `absolute` (eye or position), `translate` from `rest`, or
+// `rest` when the key gives neither.
+vec3 read_place(const nlohmann::json& key, const char* absolute, vec3 rest, const std::string& what) {
+  std::string place = which_of(key, {absolute, "translate"}, what);
+  if (place == absolute) return read_vec3(key[absolute], what + "." + absolute);
+  if (place == "translate") return rest + read_vec3(key["translate"], what + ".translate");
+  return rest;
+}
+
 KeyFramePath::Key parse_key(const nlohmann::json& j, const KeyFramePath& path, const Scene& scene,
                             const std::string& what) {
   if (!j.is_object()) throw Error(what + " must be an object");
@@ -67,10 +76,7 @@ KeyFramePath::Key parse_key(const nlohmann::json& j, const KeyFramePath& path, c
   key.time = j["time"].get<double>();
   if (path.camera) {
     const Camera& rest = scene.cameras[size_t(path.index)];
-    std::string place = which_of(j, {"eye", "translate"}, what);
-    key.position = place == "eye" ? read_vec3(j["eye"], what + ".eye")
-                   : place == "translate" ? rest.eye + read_vec3(j["translate"], what + ".translate")
-                                          : rest.eye;
+    key.position = read_place(j, "eye", rest.eye, what);
     key.up = j.contains("up") ? read_direction(j["up"], what + ".up") : rest.up;
     std::string look = which_of(j, {"target", "forward", "yaw_degrees"}, what);
     if (look == "target") {
@@ -89,10 +95,7 @@ KeyFramePath::Key parse_key(const nlohmann::json& j, const KeyFramePath& path, c
     key.up = orthonormal_up(key.forward, key.up, what);
   } else {
     const PunctualLight& rest = scene.lights[size_t(path.index)];
-    std::string place = which_of(j, {"position", "translate"}, what);
-    key.position = place == "position" ? read_vec3(j["position"], what + ".position")
-                   : place == "translate" ? rest.position + read_vec3(j["translate"], what + ".translate")
-                                          : rest.position;
+    key.position = read_place(j, "position", rest.position, what);
     key.forward = j.contains("direction") ? read_direction(j["direction"], what + ".direction") : rest.direction;
   }
   return key;

@@ -68,16 +68,18 @@ std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>&
   return out;
 }
 
-TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height, bool direct) {
-  TemporalImages out{Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
-  for (size_t i = 0; i < history.size(); ++i) {
+TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height) {
+  TemporalImages out{Image(width, height, 3), Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
+  tbb::parallel_for(size_t(0), history.size(), [&](size_t i) {
     const TemporalTexel& t = history[i];
-    vec3 c = direct ? t.direct : t.indirect;
-    for (int k = 0; k < 3; ++k) out.illumination.data[3 * i + k] = c[k];
-    out.moments.data[2 * i] = direct ? t.moments.x : t.moments.z;
-    out.moments.data[2 * i + 1] = direct ? t.moments.y : t.moments.w;
+    for (int k = 0; k < 3; ++k) {
+      out.direct.data[3 * i + k] = t.direct[k];
+      out.indirect.data[3 * i + k] = t.indirect[k];
+    }
+    out.indirect_moments.data[2 * i] = t.moments.z;
+    out.indirect_moments.data[2 * i + 1] = t.moments.w;
     out.frames.data[i] = t.frames;
-  }
+  });
   return out;
 }
 

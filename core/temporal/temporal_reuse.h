@@ -39,12 +39,12 @@ std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>&
 
 TemporalPush temporal_push(const TemporalParams& params, int width, int height);
 
-// The history's averages as images: illumination (RGB), moments of luminance (2 channels:
-// E[l], E[l^2]) and the frames behind them (1 channel), of the direct (`direct` true) or indirect
-// light.
+// The history's averages as images, in one pass: the direct and indirect illumination (RGB), and
+// what SVGF filters the indirect light with: the moments of its luminance (2 channels: E[l],
+// E[l^2]) and the frames behind them (1 channel).
 struct TemporalImages {
-  Image illumination, moments, frames;
+  Image direct, indirect, indirect_moments, frames;
 };
-TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height, bool direct);
+TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height);
 
 }  // namespace sst

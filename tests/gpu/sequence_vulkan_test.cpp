@@ -29,9 +29,9 @@ std::vector<FrameOutput> render(const std::string& backend, const nlohmann::json
   std::vector<FrameOutput> frames;
   render_sequence(scene, p, o, nlohmann::json::object(), true, [&](SequenceFrame& f) {
     frames.push_back(f.result.frame);
-    if (backend == "vulkan")
-      for (const char* stage : {"temporal", "denoise", "upsample"})
-        EXPECT_GT(f.result.timer.ms(stage), 0.0) << stage;
+    if (backend == "vulkan") {
+      for (const char* stage : {"temporal", "denoise", "upsample"}) EXPECT_GT(f.result.timer.ms(stage), 0.0) << stage;
+    }
   });
   return frames;
 }

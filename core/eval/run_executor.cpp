@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 
+#include "core/eval/sequence_checkpoint.h"
 #include "core/image/video.h"
 #include "core/metrics/error_map.h"
 #include "core/metrics/metrics.h"
@@ -149,64 +151,83 @@ int calibrate_sequence_spp(Scene& scene, const RunSpec& run, double budget_ms, n
 // A sequence run: warm-up frames, then measured frames, each against its own reference. Per-frame
 // metrics of the output and of the raw frame (before reuse and denoising), their medians, and the
 // flicker of both (core/metrics/metrics.h): the record's "metrics" are the medians, so tables and
-// reports read sequences as they read single frames.
+// reports read sequences as they read single frames. After every frame but the last the run's
+// progress is saved (core/eval/sequence_checkpoint.h), and a run that finds its own checkpoint
+// continues from it.
 void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference& frame_reference,
                           const std::string& run_dir, nlohmann::json& record) {
   RenderOptions options = run_options(run);
+  std::string discarded;
+  std::optional<SequenceCheckpoint> resumed = load_checkpoint(run_dir, run.spec_hash, discarded);
+  if (!discarded.empty()) record["warnings"].push_back(discarded);
+  SequenceCheckpoint progress = resumed ? std::move(*resumed) : SequenceCheckpoint{};
+  if (resumed) {
+    options.spp = progress.spp;
+  } else if (run.time_budget_ms > 0.0) {
+    options.spp = calibrate_sequence_spp(scene, run, run.time_budget_ms, progress.calibration);
+  }
+  progress.spp = options.spp;
   if (run.time_budget_ms > 0.0) {
-    nlohmann::json calibration;
-    options.spp = calibrate_sequence_spp(scene, run, run.time_budget_ms, calibration);
-    record["calibration"] = calibration;
+    record["calibration"] = progress.calibration;
     record["time_budget_ms"] = run.time_budget_ms;
   }
+  if (resumed) record["resumed_at_frame"] = progress.state.next;
   const int measured = options.frames;
   options.frames = run.warmup_frames + measured;
   PoseRestorer restore(scene);
   std::vector<KeyFramePath> paths = parse_key_frame_paths(run.paths, scene, "paths");
   fs::path dir(run_dir), preview_dir = dir / "frames";
-  std::vector<nlohmann::json> frames, metrics, metrics_raw;
-  std::vector<double> frame_times;
-  double flicker = 0.0, flicker_raw = 0.0;
-  int pairs = 0;
-  Image previous, previous_raw, previous_reference;
+  SequenceTally& tally = progress.tally;
   RenderResult last;
-  Image last_reference;
-  render_sequence(scene, paths, options, run.method_params, true, [&](SequenceFrame& f) {
-    const int position = f.index - options.frame_start;
-    if (position < run.warmup_frames) return;
-    RunReference reference = frame_reference(f.index, f.time, scene);
-    const FrameOutput& out = f.result.frame;
-    const Image& raw = layer_or(out, "raw", out.color);
-    ImageMetrics m = compare_images(out.color, *reference.image), m_raw = compare_images(raw, *reference.image);
-    double ms = frame_ms(f.result);
-    frame_times.push_back(ms);
-    metrics.push_back(to_json(m));
-    metrics_raw.push_back(to_json(m_raw));
-    frames.push_back({{"index", f.index}, {"time", f.time}, {"frame_ms", ms}, {"reference", reference.id},
-                      {"metrics", metrics.back()}, {"metrics_raw", metrics_raw.back()},
-                      {"stages", stage_statistics({f.result.timer})}});
-    if (!previous.data.empty()) {
-      flicker += flicker_mse(previous, out.color, previous_reference, *reference.image);
-      flicker_raw += flicker_mse(previous_raw, raw, previous_reference, *reference.image);
-      ++pairs;
-    }
-    previous = out.color;
-    previous_raw = raw;
-    previous_reference = *reference.image;
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%04d.png", position - run.warmup_frames);
-    write_image((preview_dir / name).string(), out.color, {}, f.result.options.exposure);
-    write_image((preview_dir / ("reference_" + std::string(name + 6))).string(), *reference.image, {},
-                f.result.options.exposure);
-    last = std::move(f.result);
-    last_reference = *reference.image;
-    // Every frame has its own reference; the run names the last measured one's.
-    record["reference"] = reference.id;
-    record["reference_description"] = reference.description;
-  });
+  render_sequence(
+      scene, paths, options, run.method_params, true,
+      [&](SequenceFrame& f) {
+        const int position = f.index - options.frame_start;
+        if (position >= run.warmup_frames) {
+          RunReference reference = frame_reference(f.index, f.time, scene);
+          const FrameOutput& out = f.result.frame;
+          const Image& raw = layer_or(out, "raw", out.color);
+          ImageMetrics m = compare_images(out.color, *reference.image), m_raw = compare_images(raw, *reference.image);
+          tally.frames.push_back({{"index", f.index},
+                                  {"time", f.time},
+                                  {"frame_ms", frame_ms(f.result)},
+                                  {"reference", reference.id},
+                                  {"metrics", to_json(m)},
+                                  {"metrics_raw", to_json(m_raw)},
+                                  {"stages", stage_statistics({f.result.timer})}});
+          if (!tally.previous.data.empty()) {
+            tally.flicker += flicker_mse(tally.previous, out.color, tally.previous_reference, *reference.image);
+            tally.flicker_raw += flicker_mse(tally.previous_raw, raw, tally.previous_reference, *reference.image);
+            ++tally.pairs;
+          }
+          tally.previous = out.color;
+          tally.previous_raw = raw;
+          tally.previous_reference = *reference.image;
+          char name[32];
+          std::snprintf(name, sizeof name, "frame_%04d.png", position - run.warmup_frames);
+          write_image((preview_dir / name).string(), out.color, {}, f.result.options.exposure);
+          write_image((preview_dir / ("reference_" + std::string(name + 6))).string(), *reference.image, {},
+                      f.result.options.exposure);
+          // Every frame has its own reference; the run names the last measured one's.
+          tally.reference = reference.id;
+          tally.reference_description = reference.description;
+        }
+        if (position + 1 < options.frames) save_checkpoint(run_dir, run.spec_hash, progress);
+        last = std::move(f.result);
+      },
+      &progress.state);
+  std::vector<nlohmann::json> metrics, metrics_raw;
+  std::vector<double> frame_times;
+  for (const nlohmann::json& f : tally.frames) {
+    metrics.push_back(f["metrics"]);
+    metrics_raw.push_back(f["metrics_raw"]);
+    frame_times.push_back(f["frame_ms"].get<double>());
+  }
+  record["reference"] = tally.reference;
+  record["reference_description"] = tally.reference_description;
   write_image((dir / "image.exr").string(), last.frame.color, last.frame.layers());
   write_image((dir / "image.png").string(), last.frame.color, {}, last.options.exposure);
-  write_image((dir / "error.png").string(), error_heatmap(last.frame.color, last_reference));
+  write_image((dir / "error.png").string(), error_heatmap(last.frame.color, tally.previous_reference));
   nlohmann::json videos = nlohmann::json::object();
   for (const char* which : {"frame", "reference"}) {
     std::string video = std::string(which == std::string("frame") ? "video" : "reference") + ".mp4";
@@ -228,13 +249,14 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
   record["device"] = last.device;
   record["metrics"] = median_metrics(metrics);
   record["metrics_raw"] = median_metrics(metrics_raw);
-  record["flicker"] = pairs ? nlohmann::json(std::sqrt(flicker / pairs)) : nlohmann::json(nullptr);
-  record["flicker_raw"] = pairs ? nlohmann::json(std::sqrt(flicker_raw / pairs)) : nlohmann::json(nullptr);
+  const int pairs = tally.pairs;
+  record["flicker"] = pairs ? nlohmann::json(std::sqrt(tally.flicker / pairs)) : nlohmann::json(nullptr);
+  record["flicker_raw"] = pairs ? nlohmann::json(std::sqrt(tally.flicker_raw / pairs)) : nlohmann::json(nullptr);
   record["warmup_frames"] = run.warmup_frames;
-  record["frames"] = frames;
+  record["frames"] = tally.frames;
   record["videos"] = videos;
   nlohmann::json stages = nlohmann::json::object();
-  for (const nlohmann::json& f : frames)
+  for (const nlohmann::json& f : tally.frames)
     for (const auto& [stage, t] : f["stages"].items()) stages[stage].push_back(t["median"]);
   for (auto& [stage, values] : stages.items()) stages[stage] = median_min_max(values.get<std::vector<double>>());
   record["stages"] = stages;
@@ -270,6 +292,7 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
                    {"scene_summary", scene_summary(scene, run_options(run).diffuse_only)}});
     execute_sequence_run(scene, run, frame_reference, run_dir, record);
     write_json_atomic((fs::path(run_dir) / "run.json").string(), record);
+    remove_checkpoint(run_dir);
     return record;
   }
   nlohmann::json calibration = nullptr;

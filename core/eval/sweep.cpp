@@ -10,6 +10,7 @@
 #include "core/util/hash.h"
 #include "core/eval/results.h"
 #include "core/eval/run_executor.h"
+#include "core/eval/sequence_checkpoint.h"
 #include "core/scene/animation.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
@@ -101,10 +102,14 @@ class ReferenceStore {
 
 void check_output_dir(const SweepOptions& options, const std::vector<RunSpec>& runs) {
   if (options.resume) return;
-  for (const RunSpec& run : runs)
+  for (const RunSpec& run : runs) {
     if (fs::exists(run_json_path(options.output_dir, run)))
       throw Error(options.output_dir + ": holds finished runs of an earlier sweep (e.g. " + run.id +
                   "); pass --resume to continue it, or choose another -o");
+    if (has_checkpoint((fs::path(options.output_dir) / "runs" / run.id).string()))
+      throw Error(options.output_dir + ": holds the unfinished sequence run " + run.id +
+                  " of an earlier sweep; pass --resume to continue it, or choose another -o");
+  }
 }
 
 std::string duration(double seconds) {

@@ -40,13 +40,14 @@ SST_FUNC float filter_b3(int k) {
 // background keep their values, and surfaces never blend with them.
 SST_FUNC bool filter_has_surface(float depth) { return depth > 0.0f; }
 
-// Albedo demodulation (SVGF): the filters smooth the illumination, not the texture. A channel of
-// albedo below 1e-3 (a black surface, an emitter, a miss) is not divided at all: dividing by a
-// near-zero albedo would turn its light (an emitter's, seen directly) into a huge illumination
-// that the filters spread onto the surfaces around it.
-SST_FUNC vec3 filter_albedo_divisor(vec3 albedo) {
-  return vec3(albedo.x >= 1e-3f ? albedo.x : 1.0f, albedo.y >= 1e-3f ? albedo.y : 1.0f, albedo.z >= 1e-3f ? albedo.z : 1.0f);
-}
+// Albedo demodulation (SVGF): the filters smooth the illumination, not the texture. Each channel
+// divides by the albedo clamped to at least 0.01, a continuous divisor whose inverse remodulates
+// exactly. A smaller floor would let light that does not scale with albedo (a dielectric's
+// specular highlight on a black surface) become an illumination hundreds of times its neighbours'
+// that the filters spread onto them. (A threshold below which channels were left undivided made
+// SVGF's feedback unstable: illumination spread onto an undivided pixel was written back as its
+// radiance, a thousand times what the surface reflects, and divided again the next frame.)
+SST_FUNC vec3 filter_albedo_divisor(vec3 albedo) { return max(albedo, vec3(0.01f, 0.01f, 0.01f)); }
 
 SST_FUNC bool filter_inside(int x, int y, int width, int height) { return x >= 0 && y >= 0 && x < width && y < height; }
 

@@ -32,7 +32,7 @@ SvgfSpatialResult svgf_spatial(const Image& illumination, const Image& moments, 
 Image joint_bilateral_upsample(const Image& low, const Image& low_depth, const Image& low_normal, const Image& depth,
                                const Image& normal, const UpsampleParams& params);
 
-// light / albedo and its inverse, per channel, leaving channels of albedo below 1e-3 undivided
+// light / albedo and its inverse, per channel, with the albedo clamped to at least 0.01
 // (filter_albedo_divisor): what the filters and temporal reuse smooth, and how the result becomes
 // light again; finite for black albedo.
 Image demodulate(const Image& light, const Image& albedo);

@@ -103,19 +103,12 @@ class PostStages {
   StageTimer& timer_;
 };
 
-// The state one frame hands the next.
-struct History {
-  bool valid = false;
-  std::vector<vec3> positions;  // the scene's vertices as the frame saw them
-  glsl::ViewParams view{};
-  std::vector<TemporalTexel> temporal;
-};
-
 class SequenceRunner {
  public:
   SequenceRunner(Scene& scene, const std::vector<KeyFramePath>& paths, const RenderOptions& options,
-                 const nlohmann::json& method_params, bool quiet)
-      : scene_(scene), paths_(paths), renderer_(options, method_params, quiet), options_(renderer_.options()) {
+                 const nlohmann::json& method_params, bool quiet, SequenceState& state)
+      : scene_(scene), paths_(paths), renderer_(options, method_params, quiet), options_(renderer_.options()),
+        state_(state) {
     camera_index_ = scene.find_camera(options_.camera);
     if (camera_index_ < 0) select_camera(scene, options_.camera);  // throws, listing the cameras
     resolve_resolution(scene.cameras[size_t(camera_index_)], options_.width, options_.height);
@@ -133,19 +126,20 @@ class SequenceRunner {
     if (scene_.animation) moved = scene_.animation->pose(scene_, out.time);
     moved.lights = apply_key_frame_paths(paths_, scene_, out.time) || moved.lights;
     // Cameras are read per frame; geometry and lights are built into the renderer.
-    if (position == 0 || moved.geometry || moved.lights) renderer_.prepare(scene_, timer);
+    if (!prepared_ || moved.geometry || moved.lights) renderer_.prepare(scene_, timer);
+    prepared_ = true;
     const Camera& camera = scene_.cameras[size_t(camera_index_)];
     const uint32_t seed = frame_seed(options_.seed, out.index);
     const int w = options_.width, h = options_.height;
     glsl::ViewParams view = view_params(PinholeCamera(camera, w, h), w, h, 0);
-    if (!history_.valid) {
-      history_.positions = scene_.positions;
-      history_.view = view;
+    if (!state_.has_previous) {
+      state_.positions = scene_.positions;
+      state_.view = view;
     }
     CentreGBuffer g;
     if (gbuffer_)
       g = timer.time("gbuffer",
-                     [&] { return centre_gbuffer(renderer_.accel(), scene_, history_.positions, view, history_.view); });
+                     [&] { return centre_gbuffer(renderer_.accel(), scene_, state_.positions, view, state_.view); });
     PostStages post(renderer_, timer);
     if (options_.indirect_scale > 1) {
       out.result = render_split(camera, seed, out.index, g, timer, post);
@@ -157,10 +151,11 @@ class SequenceRunner {
     out.result.timer = timer;
     out.result.options = options_;
     out.result.options.seed = seed;
-    history_.valid = true;
-    history_.view = view;
+    state_.has_previous = true;
+    state_.view = view;
     // Only posing moves vertices; a static scene's stay those of the first frame.
-    if (moved.geometry) history_.positions = scene_.positions;
+    if (moved.geometry) state_.positions = scene_.positions;
+    state_.next = position + 1;
     return out;
   }
 
@@ -182,12 +177,13 @@ class SequenceRunner {
     CentreGBuffer low_g = timer.time("gbuffer_low", [&] {
       return centre_gbuffer(renderer_.accel(), scene_, scene_.positions, low_view, low_view);
     });
-    Image low_light = timer.time("post_convert", [&] { return demodulate(low.frame.indirect, low_g.albedo); });
+    // Each resolution's light is demodulated and remodulated by the mean albedo of its own samples.
+    Image low_light = timer.time("post_convert", [&] { return demodulate(low.frame.indirect, low.frame.albedo); });
     Image up = post.upsample(low_light, low_g, g, options_.upsample);
     RenderResult result = std::move(full);
     result.method_params = low.method_params;
     timer.time("post_convert", [&] {
-      result.frame.indirect = remodulate(up, g.albedo);
+      result.frame.indirect = remodulate(up, result.frame.albedo);
       result.frame.color = sum(result.frame.direct, result.frame.indirect);
     });
     result.frame.counters += low.frame.counters;
@@ -197,28 +193,33 @@ class SequenceRunner {
   }
 
   // Temporal reuse and denoising of the frame's light, in place; the frame keeps its unfiltered
-  // image as the layer "raw" and gains "motion". The host's conversions between the stages
-  // (demodulation, packing the per-pixel inputs, reading the history back into images) are timed
-  // as "post_convert".
+  // image as the layer "raw" and gains "motion". Light is demodulated by the mean albedo of the
+  // pixel's samples and remodulated by the same albedo, or by its temporal average where the
+  // history is reused (core/temporal/temporal_layout.h says why not the pixel centre's), so that
+  // what no filter changed comes back unchanged. The host's
+  // conversions between the stages (demodulation, packing the per-pixel inputs, reading the
+  // history back into images) are timed as "post_convert".
   void post_process(FrameOutput& f, const CentreGBuffer& g, PostStages& post, StageTimer& timer) {
     const int w = f.color.width, h = f.color.height;
     Image raw = f.color;
-    Image direct, indirect;
+    Image direct, indirect, albedo;
     TemporalImages history;
     if (reuse_) {
       std::vector<TemporalInput> input = timer.time("post_convert", [&] {
-        return temporal_inputs(f.direct, f.indirect, g.albedo, g.depth, g.normal, g.motion, g.previous_depth);
+        return temporal_inputs(f.direct, f.indirect, f.albedo, g.depth, g.normal, g.motion, g.previous_depth);
       });
-      history_.temporal = post.temporal(input, history_.temporal, temporal_push(options_.temporal_params, w, h));
+      state_.temporal = post.temporal(input, state_.temporal, temporal_push(options_.temporal_params, w, h));
       timer.time("post_convert", [&] {
-        history = temporal_images(history_.temporal, w, h);
+        history = temporal_images(state_.temporal, w, h);
         direct = history.direct;
         indirect = history.indirect;
+        albedo = history.albedo;
       });
     } else {
       timer.time("post_convert", [&] {
-        direct = demodulate(f.direct, g.albedo);
-        indirect = demodulate(f.indirect, g.albedo);
+        direct = demodulate(f.direct, f.albedo);
+        indirect = demodulate(f.indirect, f.albedo);
+        albedo = f.albedo;
       });
     }
     if (options_.denoise == "atrous") {
@@ -227,16 +228,13 @@ class SequenceRunner {
       SvgfSpatialResult s = post.svgf(history, g.depth, g.normal, options_.svgf);
       indirect = s.filtered;
       // SVGF's feedback: the history continues from the first a-trous level's output.
-      timer.time("post_convert", [&] {
-        for (size_t i = 0; i < history_.temporal.size(); ++i)
-          history_.temporal[i].indirect = s.level1.rgb(int(i % size_t(w)), int(i / size_t(w)));
-      });
+      timer.time("post_convert", [&] { set_temporal_indirect(state_.temporal, s.level1, albedo); });
       f.extra_layers.push_back({"variance", s.variance});
     }
     if (reuse_ || options_.denoise != "none") {
       timer.time("post_convert", [&] {
-        f.direct = remodulate(direct, g.albedo);
-        f.indirect = remodulate(indirect, g.albedo);
+        f.direct = remodulate(direct, albedo);
+        f.indirect = remodulate(indirect, albedo);
         f.color = sum(f.direct, f.indirect);
       });
       f.extra_layers.push_back({"raw", raw});
@@ -249,17 +247,21 @@ class SequenceRunner {
   FrameRenderer renderer_;
   RenderOptions options_;
   int camera_index_ = 0;
-  bool reuse_ = false, gbuffer_ = false;
-  History history_;
+  bool reuse_ = false, gbuffer_ = false, prepared_ = false;
+  SequenceState& state_;
 };
 
 }  // namespace
 
 void render_sequence(Scene& scene, const std::vector<KeyFramePath>& paths, const RenderOptions& options,
                      const nlohmann::json& method_params, bool quiet,
-                     const std::function<void(SequenceFrame&)>& on_frame) {
-  SequenceRunner runner(scene, paths, options, method_params, quiet);
-  for (int i = 0; i < options.frames; ++i) {
+                     const std::function<void(SequenceFrame&)>& on_frame, SequenceState* state) {
+  SequenceState own;
+  SequenceState& s = state ? *state : own;
+  if (s.next > options.frames) throw Error("a sequence state at frame " + std::to_string(s.next) + " of " +
+                                           std::to_string(options.frames));
+  SequenceRunner runner(scene, paths, options, method_params, quiet, s);
+  for (int i = s.next; i < options.frames; ++i) {
     SequenceFrame frame = runner.frame(i);
     on_frame(frame);
   }

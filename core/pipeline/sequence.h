@@ -9,6 +9,7 @@
 
 #include "core/image/image.h"
 #include "core/pipeline/renderer.h"
+#include "core/pipeline/sequence_state.h"
 #include "core/render/render_options.h"
 #include "core/scene/key_frame_path.h"
 #include "core/scene/scene.h"
@@ -39,8 +40,10 @@ uint32_t frame_seed(uint32_t seed, int index);
 
 // Renders frames options.frame_start .. frame_start + frames - 1 of `scene` (posed in place),
 // handing each to `on_frame` as soon as it is finished (frames are not kept: write them there).
+// With `state`, the sequence continues from state->next with its history, and *state is the
+// sequence's state after each frame by the time on_frame sees that frame (save it there to resume).
 void render_sequence(Scene& scene, const std::vector<KeyFramePath>& paths, const RenderOptions& options,
                      const nlohmann::json& method_params, bool quiet,
-                     const std::function<void(SequenceFrame&)>& on_frame);
+                     const std::function<void(SequenceFrame&)>& on_frame, SequenceState* state = nullptr);
 
 }  // namespace sst

@@ -11,8 +11,7 @@ namespace sst {
 CentreGBuffer centre_gbuffer(const EmbreeAccel& accel, const Scene& scene, const std::vector<vec3>& previous_positions,
                              const glsl::ViewParams& view, const glsl::ViewParams& previous_view) {
   const int width = int(view.width), height = int(view.height);
-  CentreGBuffer out{Image(width, height, 1), Image(width, height, 3), Image(width, height, 3), Image(width, height, 2),
-                    Image(width, height, 1)};
+  CentreGBuffer out{Image(width, height, 1), Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
   tbb::parallel_for(0, height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       vec2 centre(float(x) + 0.5f, float(y) + 0.5f);
@@ -27,7 +26,6 @@ CentreGBuffer centre_gbuffer(const EmbreeAccel& accel, const Scene& scene, const
         Surface s = make_surface(scene, hit.triangle, vec2(hit.u, hit.v), dir);
         out.depth.at(x, y, 0) = hit.t;
         out.normal.set_rgb(x, y, s.ns);
-        out.albedo.set_rgb(x, y, s.base_color);
         uvec3 tri = scene.triangles[hit.triangle];
         float w = 1.0f - hit.u - hit.v;
         vec3 p = w * previous_positions[tri.x] + hit.u * previous_positions[tri.y] + hit.v * previous_positions[tri.z];

@@ -1,10 +1,10 @@
 // The G-buffer of a frame's pixel centres, for what works across frames and between pixels
 // (temporal reuse, the G-buffer-guided filters, upsampling): for each pixel's centre ray the first
-// hit's distance, shading normal and base colour, where the same surface point was one frame
-// earlier (the hit triangle's vertices in the previous pose, seen by the previous camera), and its
-// distance from that camera. Unlike the AOVs a method averages over its jittered samples, these
-// do not change from frame to frame under a static view, so history is tested and light
-// demodulated against the same values every frame.
+// hit's distance and shading normal, where the same surface point was one frame earlier (the hit
+// triangle's vertices in the previous pose, seen by the previous camera), and its distance from
+// that camera. Unlike the AOVs a method averages over its jittered samples, these do not change
+// from frame to frame under a static view, so history is tested against the same values every
+// frame. (Light is demodulated by the samples' own albedo instead: core/temporal/temporal_layout.h.)
 #pragma once
 #include <vector>
 
@@ -18,7 +18,6 @@ namespace sst {
 struct CentreGBuffer {
   Image depth;    // distance from the camera to the first hit; 0 for a miss. 1 channel
   Image normal;   // shading normal facing the camera; 0 for a miss
-  Image albedo;   // base colour; 0 for a miss
   // Previous position minus current position of the point each pixel centre sees, in pixels (x
   // right, y down); for a miss, the motion of the direction (a point at infinity). 2 channels.
   Image motion;

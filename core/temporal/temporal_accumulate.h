@@ -2,8 +2,9 @@
 // the pixel's motion-vector position with bilinear taps, each tap kept only when it saw the same
 // surface (its depth matches the point's distance from the previous camera, its normal the
 // current normal), and the current frame is blended in with alpha = 1 / min(history + 1, cap): a
-// running mean for the first `cap` frames, then an exponential average. Moments of luminance are
-// accumulated alongside for SVGF's variance estimate (Schied et al. 2017, sec. 4.1).
+// running mean for the first `cap` frames, then an exponential average, of radiance and albedo
+// alike. Moments of the illumination's luminance are accumulated alongside for SVGF's variance
+// estimate (Schied et al. 2017, sec. 4.1).
 //
 // Hooks: TEMPORAL_HISTORY(i) -> TemporalTexel, the previous frame's history of pixel i (row-major);
 // TEMPORAL_CTX_PARAM, a leading parameter declaration (with its comma) through which the C++
@@ -22,10 +23,8 @@ SST_FUNC bool temporal_same_surface(SST_IN(TemporalTexel) h, SST_IN(TemporalInpu
   return depth_error <= push.depth_tolerance * c.previous_depth && dot3(h.normal, c.normal) >= push.normal_cos;
 }
 
-SST_FUNC vec4 temporal_moments(vec3 direct, vec3 indirect) {
-  float d = luminance(direct);
-  float i = luminance(indirect);
-  SST_PRECISE vec4 m = vec4(d, d * d, i, i * i);
+SST_FUNC vec4 temporal_moments(vec2 luminance) {
+  SST_PRECISE vec4 m = vec4(luminance.x, luminance.x * luminance.x, luminance.y, luminance.y * luminance.y);
   return m;
 }
 
@@ -33,6 +32,7 @@ SST_FUNC vec4 temporal_moments(vec3 direct, vec3 indirect) {
 SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y, SST_IN(TemporalInput) c, SST_IN(TemporalPush) push) {
   vec3 direct = vec3(0.0f, 0.0f, 0.0f);
   vec3 indirect = vec3(0.0f, 0.0f, 0.0f);
+  vec3 albedo = vec3(0.0f, 0.0f, 0.0f);
   vec4 moments = vec4(0.0f, 0.0f, 0.0f, 0.0f);
   float frames = 0.0f;
   float weight_sum = 0.0f;
@@ -55,9 +55,11 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
       if (!temporal_same_surface(h, c, push)) continue;
       SST_PRECISE vec3 wd = h.direct * w;
       SST_PRECISE vec3 wi = h.indirect * w;
+      SST_PRECISE vec3 wa = h.albedo * w;
       SST_PRECISE vec4 wm = h.moments * w;
       direct += wd;
       indirect += wi;
+      albedo += wa;
       moments += wm;
       frames += h.frames * w;
       weight_sum += w;
@@ -68,6 +70,7 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
     SST_PRECISE float inv = 1.0f / weight_sum;
     direct = direct * inv;
     indirect = indirect * inv;
+    albedo = albedo * inv;
     moments = moments * inv;
     frames = frames * inv;
   } else {
@@ -78,9 +81,12 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
   TemporalTexel result;
   SST_PRECISE vec3 d = direct + (c.direct - direct) * alpha;
   SST_PRECISE vec3 i = indirect + (c.indirect - indirect) * alpha;
-  SST_PRECISE vec4 m = moments + (temporal_moments(c.direct, c.indirect) - moments) * alpha;
+  SST_PRECISE vec3 a = albedo + (c.albedo - albedo) * alpha;
+  SST_PRECISE vec4 m = moments + (temporal_moments(c.luminance) - moments) * alpha;
   result.direct = d;
   result.indirect = i;
+  result.albedo = a;
+  result.pad1 = 0.0f;
   result.moments = m;
   result.frames = n;
   result.depth = c.depth;

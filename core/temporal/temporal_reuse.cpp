@@ -28,14 +28,15 @@ std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& ind
   tbb::parallel_for(0, direct.height, [&](int y) {
     for (int x = 0; x < direct.width; ++x) {
       TemporalInput& t = in[size_t(y) * direct.width + x];
-      t.direct = direct_illumination.rgb(x, y);
-      t.indirect = indirect_illumination.rgb(x, y);
+      t.direct = direct.rgb(x, y);
+      t.indirect = indirect.rgb(x, y);
+      t.albedo = albedo.rgb(x, y);
       t.depth = depth.at(x, y, 0);
       t.previous_depth = previous_depth.at(x, y, 0);
       t.normal = normal.rgb(x, y);
       t.motion = vec2(motion.at(x, y, 0), motion.at(x, y, 1));
-      t.pad0 = 0.0f;
-      t.pad1 = vec2(0.0f);
+      t.luminance = vec2(luminance(direct_illumination.rgb(x, y)), luminance(indirect_illumination.rgb(x, y)));
+      t.pad0 = t.pad1 = 0.0f;
     }
   });
   return in;
@@ -69,18 +70,30 @@ std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>&
 }
 
 TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height) {
-  TemporalImages out{Image(width, height, 3), Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
+  Image direct(width, height, 3), indirect(width, height, 3);
+  TemporalImages out{Image(), Image(), Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
   tbb::parallel_for(size_t(0), history.size(), [&](size_t i) {
     const TemporalTexel& t = history[i];
     for (int k = 0; k < 3; ++k) {
-      out.direct.data[3 * i + k] = t.direct[k];
-      out.indirect.data[3 * i + k] = t.indirect[k];
+      direct.data[3 * i + k] = t.direct[k];
+      indirect.data[3 * i + k] = t.indirect[k];
+      out.albedo.data[3 * i + k] = t.albedo[k];
     }
     out.indirect_moments.data[2 * i] = t.moments.z;
     out.indirect_moments.data[2 * i + 1] = t.moments.w;
     out.frames.data[i] = t.frames;
   });
+  out.direct = demodulate(direct, out.albedo);
+  out.indirect = demodulate(indirect, out.albedo);
   return out;
+}
+
+void set_temporal_indirect(std::vector<TemporalTexel>& history, const Image& illumination, const Image& albedo) {
+  const Image radiance = remodulate(illumination, albedo);
+  if (history.size() != radiance.pixel_count()) throw Error("set_temporal_indirect: size mismatch");
+  tbb::parallel_for(size_t(0), history.size(), [&](size_t i) {
+    for (int k = 0; k < 3; ++k) history[i].indirect[k] = radiance.data[3 * i + k];
+  });
 }
 
 }  // namespace sst

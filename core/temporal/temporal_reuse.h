@@ -26,9 +26,10 @@ struct TemporalParams {
 
 void validate(const TemporalParams& params);
 
-// Per pixel: direct and indirect radiance demodulated by `albedo` (core/filter/filters.h's
-// demodulate), depth, normal, motion (2 channels) and the previous frame's distance of the point
-// seen (core/render/centre_gbuffer.h).
+// Per pixel: direct and indirect radiance, the mean first-hit albedo of the same samples
+// (FrameOutput::albedo), the luminance of their ratio (core/filter/filters.h's demodulate), depth,
+// normal, motion (2 channels) and the previous frame's distance of the point seen
+// (core/render/centre_gbuffer.h).
 std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& indirect, const Image& albedo,
                                            const Image& depth, const Image& normal, const Image& motion,
                                            const Image& previous_depth);
@@ -39,12 +40,17 @@ std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>&
 
 TemporalPush temporal_push(const TemporalParams& params, int width, int height);
 
-// The history's averages as images, in one pass: the direct and indirect illumination (RGB), and
-// what SVGF filters the indirect light with: the moments of its luminance (2 channels: E[l],
-// E[l^2]) and the frames behind them (1 channel).
+// The history's averages as images, in one pass: the direct and indirect illumination (averaged
+// radiance demodulated by the averaged albedo) and that albedo (RGB), and what SVGF filters the
+// indirect light with: the moments of its luminance (2 channels: E[l], E[l^2]) and the frames
+// behind them (1 channel).
 struct TemporalImages {
-  Image direct, indirect, indirect_moments, frames;
+  Image direct, indirect, albedo, indirect_moments, frames;
 };
 TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height);
+
+// Replaces the history's indirect light by `illumination` remodulated by `albedo` (the history's,
+// from temporal_images): SVGF's feedback of its filtered light.
+void set_temporal_indirect(std::vector<TemporalTexel>& history, const Image& illumination, const Image& albedo);
 
 }  // namespace sst

@@ -10,6 +10,8 @@
 #include "core/eval/merge.h"
 #include "core/eval/metrics_check.h"
 #include "core/eval/run_executor.h"
+#include "core/eval/sequence_checkpoint.h"
+#include "core/image/image.h"
 #include "core/manylight/exhaustive/exhaustive_sampler.h"
 #include "core/manylight/many_light_method.h"
 #include "core/manylight/slc/slc_sampler.h"
@@ -120,6 +122,57 @@ TEST(Sweep, ShardSyntax) {
   EXPECT_THROW(parse_shard("5/5", i, n), Error);
   EXPECT_THROW(parse_shard("1", i, n), Error);
   EXPECT_THROW(parse_shard("1/2x", i, n), Error);
+}
+
+// A sequence run interrupted after some frames continues from its checkpoint at the next frame,
+// with the numbers and image of the run that was never interrupted.
+TEST(Sweep, AnInterruptedSequenceRunResumesAtItsNextFrame) {
+  ExperimentConfig c = tiny_config({{"method", "sst"},
+                                    {"spp", 1},
+                                    {"frames", 4},
+                                    {"warmup_frames", 2},
+                                    {"temporal", true},
+                                    {"denoise", "svgf"},
+                                    {"paths", json::parse(R"([{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 20}]}])")}});
+  RunSpec run = expand_runs(c).at(0);
+  Scene scene = load_default_scene();
+  Image reference(24, 24);
+  for (size_t i = 0; i < reference.data.size(); ++i) reference.data[i] = 0.02f * float(i % 37);
+  int calls = 0, interrupt_at = -1;
+  FrameReference frame_reference = [&](int index, double, const Scene&) {
+    ++calls;
+    if (index == interrupt_at) throw Error("interrupted");
+    return RunReference{"fixed", json::object(), &reference};
+  };
+  fs::path dir = test::temp_dir();
+  const std::string whole_dir = (dir / "whole").string(), cut_dir = (dir / "cut").string();
+  json whole = execute_run(scene, run, {}, frame_reference, whole_dir);
+  EXPECT_FALSE(has_checkpoint(whole_dir));
+  interrupt_at = 4;  // the third of the measured frames 2-5, after it rendered
+  EXPECT_THROW(execute_run(scene, run, {}, frame_reference, cut_dir), Error);
+  ASSERT_TRUE(has_checkpoint(cut_dir));
+  interrupt_at = -1;
+  calls = 0;
+  json resumed = execute_run(scene, run, {}, frame_reference, cut_dir);
+  EXPECT_EQ(calls, 2);  // frames 4 and 5 only
+  EXPECT_EQ(resumed["resumed_at_frame"], 4);
+  EXPECT_FALSE(has_checkpoint(cut_dir));
+  for (const char* key : {"metrics", "metrics_raw", "flicker", "flicker_raw", "spp"}) EXPECT_EQ(resumed[key], whole[key]) << key;
+  ASSERT_EQ(resumed["frames"].size(), 4u);
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(resumed["frames"][i]["metrics"], whole["frames"][i]["metrics"]) << i;
+  EXPECT_EQ(read_image(cut_dir + "/image.exr").data, read_image(whole_dir + "/image.exr").data);
+
+  // A checkpoint of another spec is not continued: the run starts over and says why.
+  interrupt_at = 3;
+  EXPECT_THROW(execute_run(scene, run, {}, frame_reference, cut_dir), Error);
+  interrupt_at = -1;
+  calls = 0;
+  RunSpec changed = run;
+  changed.spec_hash = "another";
+  json restarted = execute_run(scene, changed, {}, frame_reference, cut_dir);
+  EXPECT_EQ(calls, 4);
+  EXPECT_NE(restarted["warnings"].dump().find("checkpoint discarded"), std::string::npos) << restarted["warnings"];
+  EXPECT_EQ(restarted["metrics"], whole["metrics"]);
 }
 
 TEST(Sweep, CalibratedSppIsClampedToItsRange) {

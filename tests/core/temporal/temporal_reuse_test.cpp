@@ -2,6 +2,7 @@
 // changed, bilinear reprojection of a shifted history.
 #include <gtest/gtest.h>
 
+#include "core/math/vector_math.h"
 #include "core/temporal/temporal_reuse.h"
 #include "core/util/error.h"
 
@@ -16,6 +17,8 @@ TemporalInput input(vec3 direct, vec3 indirect, float depth, vec3 normal, vec2 m
   t.previous_depth = depth;
   t.normal = normal;
   t.motion = motion;
+  t.albedo = vec3(1.0f);
+  t.luminance = vec2(luminance(direct), luminance(indirect));
   return t;
 }
 
@@ -45,6 +48,26 @@ TEST(TemporalReuse, StaticViewKeepsTheRunningMeanUpToTheCapThenAnExponentialOne)
   EXPECT_FLOAT_EQ(history[0].frames, 4.0f);
   // Moments: luminance of a grey value is the value.
   EXPECT_NEAR(history[0].moments.x, history[0].direct.x, 1e-5f);
+}
+
+// The history averages radiance and albedo alike, so that remodulating its illumination (their
+// ratio) gives back the plain mean of the frames' radiance, however the albedo of the samples varied.
+TEST(TemporalReuse, RadianceAndAlbedoAverageAlikeSoRemodulationIsExact) {
+  const int w = 1, h = 1;
+  std::vector<TemporalTexel> history;
+  const float albedo[3] = {0.1f, 0.9f, 0.5f}, irradiance[3] = {4.0f, 1.0f, 2.0f};
+  double radiance_sum = 0.0, albedo_sum = 0.0;
+  for (int f = 0; f < 3; ++f) {
+    vec3 radiance(albedo[f] * irradiance[f]);
+    TemporalInput in = input(vec3(0.0f), radiance, 1.0f, vec3(0, 0, 1), vec2(0.0f));
+    in.albedo = vec3(albedo[f]);
+    history = temporal_accumulate({in}, history, push(w, h, 8));
+    radiance_sum += radiance.x;
+    albedo_sum += albedo[f];
+  }
+  TemporalImages images = temporal_images(history, w, h);
+  EXPECT_FLOAT_EQ(images.albedo.at(0, 0, 0), float(albedo_sum / 3.0));
+  EXPECT_NEAR(images.indirect.at(0, 0, 0) * images.albedo.at(0, 0, 0), radiance_sum / 3.0, 1e-6);
 }
 
 TEST(TemporalReuse, ADisocclusionOrANewNormalRestartsTheHistory) {

@@ -16,11 +16,23 @@
 
 SST_BEGIN
 
-// Whether history texel h saw the surface the current pixel c sees.
+// Whether history texel h saw the surface the current pixel c sees. A pixel whose centre ray
+// missed continues the history of misses (the background, reprojected by direction): its samples
+// may still hit something small, a lamp's bulb at a silhouette, which without history would
+// flash at full strength in the one frame a sample finds it.
 SST_FUNC bool temporal_same_surface(SST_IN(TemporalTexel) h, SST_IN(TemporalInput) c, SST_IN(TemporalPush) push) {
+  if (!(c.depth > 0.0f)) return !(h.depth > 0.0f);
   if (!(h.depth > 0.0f)) return false;
   SST_PRECISE float depth_error = abs(h.depth - c.previous_depth);
-  return depth_error <= push.depth_tolerance * c.previous_depth && dot3(h.normal, c.normal) >= push.normal_cos;
+  if (!(depth_error <= push.depth_tolerance * c.previous_depth)) return false;
+  // A tap lies within a pixel of the reprojected point, so on a surface whose normal turns fast
+  // across pixels (a cup's rim, a chair leg) its normal may differ by as much as a pixel's step
+  // without being another surface (Falcor's SVGF scales its normal test by fwidth alike); without
+  // that allowance such pixels never keep history, and a single bright sample shows at full
+  // strength. The cosine bound alone holds on flat surfaces.
+  SST_PRECISE vec3 d = h.normal - c.normal;
+  SST_PRECISE float allowed = sqrt(max(2.0f - 2.0f * push.normal_cos, 0.0f)) + c.normal_change;
+  return dot3(d, d) <= allowed * allowed;
 }
 
 SST_FUNC vec4 temporal_moments(vec2 luminance) {
@@ -36,7 +48,8 @@ SST_FUNC TemporalTexel temporal_accumulate_pixel(TEMPORAL_CTX_PARAM int x, int y
   vec4 moments = vec4(0.0f, 0.0f, 0.0f, 0.0f);
   float frames = 0.0f;
   float weight_sum = 0.0f;
-  if (c.depth > 0.0f && c.previous_depth > 0.0f) {
+  // A hit needs the previous camera's distance to test the history against (0: not in its view).
+  if (!(c.depth > 0.0f) || c.previous_depth > 0.0f) {
     // Pixel centres sit at +0.5: the tap grid starts half a pixel before the reprojected centre.
     SST_PRECISE float fx = float(x) + c.motion.x;
     SST_PRECISE float fy = float(y) + c.motion.y;

@@ -29,7 +29,7 @@ struct TemporalInput {
   vec3 indirect;          // indirect radiance
   float previous_depth;   // the same surface point's distance from the previous frame's camera (0: none)
   vec3 normal;            // first-hit shading normal
-  float pad0;
+  float normal_change;    // the largest distance between this normal and a 4-neighbour's (0 without hits)
   vec3 albedo;            // mean first-hit base colour of the pixel's samples
   float pad1;
   vec2 motion;            // where the pixel was in the previous frame, minus where it is now (pixels)
@@ -55,6 +55,7 @@ struct TemporalPush {
   float history_cap;      // the most frames an average holds: alpha = 1 / min(frames + 1, cap)
   float depth_tolerance;  // a history tap is kept when its depth is within this fraction of the expected
   float normal_cos;       // ... and the cosine between its normal and the current one is at least this
+                          // (the bound widened by TemporalInput::normal_change)
   uint pad0;
   uint pad1;
   uint pad2;

@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/filter/filters.h"
@@ -36,7 +37,16 @@ std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& ind
       t.normal = normal.rgb(x, y);
       t.motion = vec2(motion.at(x, y, 0), motion.at(x, y, 1));
       t.luminance = vec2(luminance(direct_illumination.rgb(x, y)), luminance(indirect_illumination.rgb(x, y)));
-      t.pad0 = t.pad1 = 0.0f;
+      t.normal_change = 0.0f;
+      if (t.depth > 0.0f) {
+        const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
+        for (int k = 0; k < 4; ++k) {
+          const int qx = x + dx[k], qy = y + dy[k];
+          if (qx < 0 || qy < 0 || qx >= direct.width || qy >= direct.height || !(depth.at(qx, qy, 0) > 0.0f)) continue;
+          t.normal_change = std::max(t.normal_change, glm::length(normal.rgb(qx, qy) - t.normal));
+        }
+      }
+      t.pad1 = 0.0f;
     }
   });
   return in;

@@ -20,7 +20,8 @@ struct TemporalParams {
       "temporal reuse: the most frames a pixel's average holds (alpha = 1 / min(frames, cap)); 1 keeps no history");
     v("depth_tolerance", depth_tolerance,
       "temporal reuse: history is kept where its depth is within this fraction of the reprojected point's distance");
-    v("normal_cos", normal_cos, "temporal reuse: ... and where its normal is within this cosine of the current one");
+    v("normal_cos", normal_cos, "temporal reuse: ... and where its normal is within this cosine of the current one, widened by how much "
+      "the normal turns from one pixel to the next");
   }
 };
 

@@ -4,6 +4,7 @@
 
 #include "core/math/vector_math.h"
 #include "core/temporal/temporal_reuse.h"
+#include "core/image/image.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -93,6 +94,32 @@ TEST(TemporalReuse, ADisocclusionOrANewNormalRestartsTheHistory) {
   }
 }
 
+// On a surface whose normal turns fast from pixel to pixel, a history tap a pixel away may face
+// as differently as the neighbours do: the normal bound widens by that change (measured by
+// temporal_inputs from the 4-neighbours), and the history is kept.
+TEST(TemporalReuse, TheNormalBoundWidensWhereTheNormalTurnsAcrossPixels) {
+  const int w = 3, h = 1;
+  auto images = [&](vec3 middle) {
+    Image depth(w, h, 1), normal(w, h, 3), motion(w, h, 2), black(w, h, 3), albedo(w, h, 3);
+    const vec3 normals[3] = {glm::normalize(vec3(-1.0f, 0.0f, 1.0f)), middle, glm::normalize(vec3(1.0f, 0.0f, 1.0f))};
+    for (int x = 0; x < w; ++x) {
+      depth.at(x, 0, 0) = 2.0f;
+      normal.set_rgb(x, 0, normals[x]);
+      albedo.set_rgb(x, 0, vec3(0.5f));
+    }
+    return temporal_inputs(black, black, albedo, depth, normal, motion, depth);
+  };
+  std::vector<TemporalInput> first = images(vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_NEAR(first[1].normal_change, glm::length(first[0].normal - first[1].normal), 1e-6f);
+  std::vector<TemporalTexel> history = temporal_accumulate(first, {}, push(w, h, 8));
+  // The middle pixel now faces 30 degrees away (cosine 0.87 < 0.9): kept, its neighbours turn 45.
+  std::vector<TemporalInput> second = images(glm::normalize(vec3(0.5f, 0.0f, 0.866f)));
+  EXPECT_FLOAT_EQ(temporal_accumulate(second, history, push(w, h, 8))[1].frames, 2.0f);
+  // With flat neighbours the same turn is another surface.
+  for (TemporalInput& t : second) t.normal_change = 0.0f;
+  EXPECT_FLOAT_EQ(temporal_accumulate(second, history, push(w, h, 8))[1].frames, 1.0f);
+}
+
 TEST(TemporalReuse, HistoryIsReadBilinearlyAtTheMotionVector) {
   const int w = 4, h = 1;
   std::vector<TemporalInput> first(w * h);
@@ -104,10 +131,17 @@ TEST(TemporalReuse, HistoryIsReadBilinearlyAtTheMotionVector) {
   EXPECT_FLOAT_EQ(next[1].direct.x, 0.5f * 1.25f);
   // The last pixel's right tap is outside the image: its left tap alone carries the history.
   EXPECT_FLOAT_EQ(next[3].direct.x, 0.5f * 3.0f);
-  // A miss (depth 0) never reads history.
+  // A miss (depth 0) reads only the history of misses: none here.
   second[2].depth = 0.0f;
   next = temporal_accumulate(second, history, push(w, h, 2));
   EXPECT_FLOAT_EQ(next[2].frames, 1.0f);
+  // Where the previous frame missed too, it continues that history.
+  std::vector<TemporalInput> misses(w * h, input(vec3(2.0f), vec3(0.0f), 0.0f, vec3(0.0f), vec2(0.0f)));
+  history = temporal_accumulate(misses, {}, push(w, h, 4));
+  for (auto& t : misses) t.direct = vec3(4.0f);
+  next = temporal_accumulate(misses, history, push(w, h, 4));
+  EXPECT_FLOAT_EQ(next[1].frames, 2.0f);
+  EXPECT_FLOAT_EQ(next[1].direct.x, 3.0f);
 }
 
 TEST(TemporalReuse, ParametersAreValidated) {

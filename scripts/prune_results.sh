@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Shrinks a results folder for committing: keeps results.json/csv, table.md, report.html, the
-# reference PNGs and the seed-0 image of each sweep point (what the report shows); deletes the
+# reference PNGs and the seed-0 image and videos of each sweep point (what the report shows); deletes the
 # float EXRs, error heat maps and the PNGs of the other seeds, then rewrites the report, which
 # leaves out images that are no longer there. Usage: scripts/prune_results.sh results/X ...
 set -euo pipefail
@@ -13,7 +13,7 @@ for dir in "$@"; do
   if [ -n "$keep" ]; then
     for run in "$dir"/runs/*/; do
       id=$(basename "$run")
-      grep -qx "$id" <<<"$keep" || rm -f "$run/image.png"
+      grep -qx "$id" <<<"$keep" || rm -f "$run/image.png" "$run/video.mp4" "$run/reference.mp4"
     done
   fi
   ./build/sst-eval report "$dir"

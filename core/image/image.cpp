@@ -345,6 +345,8 @@ void write_image(const std::string& path, const Image& rgb, const std::vector<La
                  float exposure) {
   const FileFormat format = format_for(path);
   check_writable(path, rgb, layers);
+  // The temporary below is renamed over the target, which must therefore not be a device or FIFO.
+  if (!write_via_rename(path)) throw Error("cannot write image " + path + ": not a regular file");
   const fs::path target(path);
   if (target.has_parent_path()) {
     std::error_code ec;

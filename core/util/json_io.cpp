@@ -16,6 +16,11 @@ namespace sst {
 void write_text_atomic(const std::string& path, const std::string& text) {
   namespace fs = std::filesystem;
   fs::path target(path);
+  if (!write_via_rename(path)) {  // a device or FIFO: written in place, never renamed over
+    std::ofstream out(path, std::ios::binary);
+    if (!(out << text) || !out.flush()) throw Error("cannot write " + path);
+    return;
+  }
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
   fs::path temp = target;
   temp += ".tmp-" + std::to_string(getpid());

@@ -68,7 +68,14 @@ void TempFile::release() {
   path_.clear();
 }
 
+bool write_via_rename(const std::string& target) {
+  std::error_code ec;
+  std::filesystem::file_status status = std::filesystem::status(target, ec);
+  return !std::filesystem::exists(status) || std::filesystem::is_regular_file(status);
+}
+
 std::string StagedFiles::stage(const std::string& target) {
+  if (!write_via_rename(target)) return target;
   static std::atomic<unsigned> counter{0};
   std::filesystem::path t(target);
   // Appends rather than chains operator+: GCC 12 warns falsely (-Wrestrict) on the chain.
@@ -83,6 +90,7 @@ std::string StagedFiles::stage(const std::string& target) {
 
 void StagedFiles::write(const std::string& target, const std::function<void(const std::string&)>& write) {
   const std::string temp = stage(target);
+  if (temp == target) return write(target);
   try {
     write(temp);
   } catch (const Error& e) {

@@ -13,6 +13,11 @@ namespace sst {
 // and then end the process as the signal would have (same signal, default action).
 void remove_temp_files_on_signals();
 
+// Whether `target` should be written under a temporary name and renamed into place: true unless
+// it exists and is not a regular file. A device or FIFO (--json /dev/null) is written directly;
+// renaming a temporary over it would replace /dev/null with a regular file.
+bool write_via_rename(const std::string& target);
+
 // Registers `path` while alive; the destructor removes the file unless release() was called
 // (after it was renamed into place).
 class TempFile {
@@ -35,7 +40,8 @@ class TempFile {
 // temporaries are removed, so that a failure part way leaves none of the outputs.
 class StagedFiles {
  public:
-  // A temporary path beside `target`, with the same extension (writers choose the format by it).
+  // A temporary path beside `target`, with the same extension (writers choose the format by it);
+  // `target` itself when !write_via_rename(target).
   std::string stage(const std::string& target);
   // Calls write(stage(target)); an sst::Error it throws is rethrown naming `target`, not the
   // temporary.

@@ -420,6 +420,23 @@ TEST(BadInput, AnUnwritableOutputLeavesNoOtherOutput) {
     EXPECT_EQ(entry.path().filename(), "file") << "left behind: " << entry.path();
 }
 
+TEST(BadInput, ARecordWrittenToADeviceLeavesTheDeviceInPlace) {
+  // Outputs are renamed into place, but never over a device: --json /dev/null once replaced
+  // /dev/null with a regular file.
+  auto dir = test::temp_dir();
+  struct stat before {};
+  ASSERT_EQ(stat("/dev/null", &before), 0);
+  ASSERT_TRUE(S_ISCHR(before.st_mode));
+  auto r = render("--width 8 --spp 1 -q -o " + (dir / "x.exr").string() + " --json /dev/null");
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  struct stat after {};
+  ASSERT_EQ(stat("/dev/null", &after), 0);
+  EXPECT_TRUE(S_ISCHR(after.st_mode)) << "/dev/null is no longer a character device";
+  EXPECT_TRUE(fs::exists(dir / "x.exr"));
+  ASSERT_EQ(mkfifo((dir / "fifo.exr").c_str(), 0600), 0);
+  expect_error(render("--width 8 --spp 1 -q -o " + (dir / "fifo.exr").string()), "fifo.exr: not a regular file");
+}
+
 TEST(BadInput, ASignalRemovesTheTemporaryBeingWritten) {
   auto dir = test::temp_dir();
   fs::path temp = dir / ".out.exr.tmp-1";

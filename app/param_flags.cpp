@@ -1,5 +1,10 @@
 #include "app/param_flags.h"
 
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
 #include "core/util/error.h"
 
 namespace sst::app {
@@ -21,28 +26,44 @@ void ParamFlags::add(CLI::App& app, const std::vector<ParamInfo>& table, const s
   }
 }
 
+namespace {
+
+// The flag's text as a JSON number of the flag's type, or null when it is not one or does not fit
+// the parameter's range. Integers are read as 64-bit (signed or not) and range-checked rather than
+// narrowed; floats must be finite.
+nlohmann::json parse_number(const std::string& text, const ParamInfo& info) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0]))) return nullptr;
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  nlohmann::json value;
+  if (info.type == "int") {
+    if (text[0] == '-') value = (long long)std::strtoll(begin, &end, 10);
+    else value = (unsigned long long)std::strtoull(begin, &end, 10);
+  } else {
+    value = std::strtod(begin, &end);
+  }
+  if (errno == ERANGE || end != begin + text.size()) return nullptr;
+  if (info.type == "float" && !std::isfinite(value.get<double>())) return nullptr;
+  if (!info.min_value.is_null() && (value < info.min_value || value > info.max_value)) return nullptr;
+  return value;
+}
+
+}  // namespace
+
 nlohmann::json ParamFlags::given() const {
   nlohmann::json j = nlohmann::json::object();
   for (const auto& [name, f] : flags_) {
     if (f.option->count() == 0) continue;
-    const std::string flag = "--" + to_flag(name);
-    try {
-      size_t used = 0;
-      if (f.boolean) {
-        j[name] = f.boolean_value;
-      } else if (f.info.type == "int") {
-        long long v = std::stoll(f.text, &used);
-        if (used != f.text.size()) throw std::invalid_argument("trailing characters");
-        j[name] = v;
-      } else if (f.info.type == "float") {
-        double v = std::stod(f.text, &used);
-        if (used != f.text.size()) throw std::invalid_argument("trailing characters");
-        j[name] = v;
-      } else {
-        j[name] = f.text;
-      }
-    } catch (const std::exception&) {
-      throw Error(flag + " expects " + (f.info.type == "int" ? "an integer" : "a number") + ", got '" + f.text + "'");
+    if (f.boolean) {
+      j[name] = f.boolean_value;
+    } else if (f.info.type == "int" || f.info.type == "float") {
+      nlohmann::json value = parse_number(f.text, f.info);
+      if (value.is_null())
+        throw Error("--" + to_flag(name) + " expects " + range_text(f.info) + ", got '" + f.text + "'");
+      j[name] = value;
+    } else {
+      j[name] = f.text;
     }
   }
   return j;

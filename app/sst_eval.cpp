@@ -5,6 +5,7 @@
 #include "app/cli_common.h"
 #include "app/eval_compare.h"
 #include "app/eval_experiments.h"
+#include "core/util/temp_files.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"sst-eval: compare images and run experiments"};
@@ -21,12 +22,8 @@ int main(int argc, char** argv) {
   CLI::App* table_cmd = sst::app::add_table_command(app, table);
   CLI::App* check_cmd = sst::app::add_check_command(app, check);
   CLI::App* report_cmd = sst::app::add_report_command(app, report);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11 prints the message (and --help); its own codes are 100+, ours for usage errors is 2.
-    return app.exit(e) == 0 ? 0 : 2;
-  }
+  if (int code = sst::app::parse_command_line(app, argc, argv); code >= 0) return code;
+  sst::remove_temp_files_on_signals();
   using namespace sst::app;
   if (compare_cmd->parsed()) return run_guarded([&] { return run_compare(compare); });
   if (sweep_cmd->parsed()) return run_guarded([&] { return run_sweep_command(sweep); });

@@ -22,6 +22,7 @@
 #include "core/scene/gltf_loader.h"
 #include "core/scene/scene_search.h"
 #include "core/util/stage_timer.h"
+#include "core/util/temp_files.h"
 
 namespace {
 
@@ -235,10 +236,15 @@ int run(const Args& args, const sst::app::ParamFlags& flags) {
   sst::RenderResult& last = runs.back();
 
   std::vector<std::string> outputs = args.outputs.empty() ? std::vector<std::string>{"render.exr"} : args.outputs;
+  // The images and the record are written under temporary names and renamed together at the end:
+  // an output that cannot be written leaves none of them (no image without its record).
+  sst::StagedFiles staged;
   sst::StageTimer write_timer;
   write_timer.time("write", [&] {
     for (const std::string& path : outputs)
-      sst::write_image(path, last.frame.color, last.frame.layers(), last.options.exposure);
+      staged.write(path, [&](const std::string& temp) {
+        sst::write_image(temp, last.frame.color, last.frame.layers(), last.options.exposure);
+      });
   });
 
   std::string json_path = args.json_path.empty()
@@ -246,7 +252,8 @@ int run(const Args& args, const sst::app::ParamFlags& flags) {
                               : args.json_path;
   nlohmann::json record = sst::make_render_record("sst-render", scene, runs, load_timer, write_timer);
   record["outputs"] = {{"images", outputs}, {"json", json_path}};
-  sst::write_json_atomic(json_path, record);
+  staged.write(json_path, [&](const std::string& temp) { sst::write_json_atomic(temp, record); });
+  staged.commit();
   if (!args.quiet) {
     const auto& c = last.frame.counters;
     double ms = sst::frame_ms(last);
@@ -279,6 +286,7 @@ int main(int argc, char** argv) {
   app.add_flag("--list-devices", args.list_devices, "list the Vulkan devices (for --backend vulkan) and exit");
   flags.add(app, sst::param_table<sst::RenderOptions>(), "Render options");
   for (const sst::MethodInfo& m : sst::method_registry()) flags.add(app, m.params, "Method '" + m.name + "'");
-  CLI11_PARSE(app, argc, argv);
+  if (int code = sst::app::parse_command_line(app, argc, argv); code >= 0) return code;
+  sst::remove_temp_files_on_signals();
   return sst::app::run_guarded([&] { return run(args, flags); });
 }

@@ -30,6 +30,17 @@ void check_parameter_keys(const nlohmann::json& params, const std::string& conte
       throw Error(context + ": unknown parameter '" + key + "' (did you mean '" + nearest_name(key, names) + "'?)");
 }
 
+// The reference's own keys, checked where the file is known (its method parameters are checked
+// by reference_for, for each run).
+void check_reference_values(const nlohmann::json& reference, const std::string& context) {
+  if (reference.contains("kind") && !reference["kind"].is_string())
+    throw Error(context + ": 'kind' must be \"path\" or \"vpl\", got " + reference["kind"].dump());
+  if (reference.contains("spp") && !(fits<int>(reference["spp"]) && reference["spp"].get<int>() >= 1))
+    throw Error(context + ": 'spp' must be an integer >= 1, got " + reference["spp"].dump());
+  if (reference.contains("seed") && !fits<uint32_t>(reference["seed"]))
+    throw Error(context + ": 'seed' must be an integer in 0..4294967295, got " + reference["seed"].dump());
+}
+
 int positive_int(const nlohmann::json& j, const std::string& context) {
   if (!j.is_number_integer() || j.get<long long>() < 1 || j.get<long long>() > 1000000)
     throw Error(context + ": expected a positive integer, got " + j.dump());
@@ -96,6 +107,8 @@ std::string compact(const nlohmann::json& value) { return value.is_string() ? va
 // that belong only to other methods, and checks every value.
 void split_parameters(RunSpec& run, const nlohmann::json& merged, const std::string& context) {
   static const auto option_names = param_names<RenderOptions>();
+  if (merged.contains("method") && !merged["method"].is_string())
+    throw Error(context + ": 'method' must be a string, got " + merged["method"].dump());
   std::string method = merged.value("method", std::string("pt"));
   const MethodInfo& info = find_method(method);
   run.options = nlohmann::json::object();
@@ -145,6 +158,8 @@ ExperimentConfig parse_experiment_config(const nlohmann::json& j, const std::str
       throw Error(context + ": unknown key '" + key + "' (did you mean '" + nearest_name(key, known) + "'?)");
     if (contains(parameter_names, key) && !contains(kConfigKeys, key)) c.base[key] = value;
   }
+  for (const char* key : {"name", "description"})
+    if (j.contains(key) && !j[key].is_string()) throw Error(context + ": '" + key + "' must be a string, got " + j[key].dump());
   c.name = j.value("name", std::string());
   c.description = j.value("description", std::string());
   parse_scenes(c, j, context);
@@ -162,6 +177,7 @@ ExperimentConfig parse_experiment_config(const nlohmann::json& j, const std::str
   if (j.contains("variants")) parse_variants(c, j["variants"], context);
   if (j.contains("reference")) {
     if (!j["reference"].is_object()) throw Error(context + ": 'reference' must be an object");
+    check_reference_values(j["reference"], context + ": reference");
     c.reference = j["reference"];
   }
   if (j.contains("seeds")) c.seeds = positive_int(j["seeds"], context + ": seeds");
@@ -185,7 +201,21 @@ ExperimentConfig load_experiment_config(const std::string& path) {
   return c;
 }
 
+size_t count_runs(const ExperimentConfig& config) {
+  // Saturating products: axes of a few values each multiply past 2^64 quickly.
+  auto times = [](size_t a, size_t b) { return b != 0 && a > SIZE_MAX / b ? SIZE_MAX : a * b; };
+  size_t runs = times(config.scenes.size(), std::max<size_t>(config.variants.size(), 1));
+  for (const auto& axis : config.axes) runs = times(runs, axis.second.size());
+  return times(runs, size_t(std::max(config.seeds, 1)));
+}
+
 std::vector<RunSpec> expand_runs(const ExperimentConfig& config) {
+  // Every run is expanded and checked before anything renders, so their number is bounded first:
+  // a config of a few lines can otherwise describe 1e8 runs and fill the memory before the first.
+  if (size_t n = count_runs(config); n > kMaxRuns)
+    throw Error("experiment '" + config.name + "' has " + (n == SIZE_MAX ? std::string("more than 2^64") : std::to_string(n)) +
+                " runs (scenes x axes x variants x seeds); at most " + std::to_string(kMaxRuns) +
+                " are allowed: split it into several configs");
   std::vector<RunSpec> runs;
   std::vector<ExperimentVariant> variants = config.variants;
   if (variants.empty()) variants.push_back({});
@@ -203,7 +233,15 @@ std::vector<RunSpec> expand_runs(const ExperimentConfig& config) {
         nlohmann::json merged = config.base;
         merged.update(axes);
         merged.update(variant.params);
-        uint32_t seed0 = merged.value("seed", 0u);
+        uint32_t seed0 = 0;
+        if (merged.contains("seed")) {
+          // Checked before it is read: -1 would wrap to 4294967295, 1e39 does not fit at all.
+          const nlohmann::json& seed = merged["seed"];
+          if (!fits<uint32_t>(seed) || seed.get<uint64_t>() + uint64_t(config.seeds - 1) > UINT32_MAX)
+            throw Error("experiment '" + config.name + "': seed must be an integer in 0..4294967295 (with the seeds after it), got " +
+                        seed.dump());
+          seed0 = seed.get<uint32_t>();
+        }
         for (int s = 0; s < config.seeds; ++s) {
           RunSpec run;
           run.index = int(runs.size());

@@ -21,6 +21,7 @@
 // A parameter that belongs only to other methods than a run's (e.g. vpls on a pt variant) does
 // not apply to that run and is dropped from it; the run records what was in effect.
 #pragma once
+#include <cstddef>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -73,7 +74,13 @@ ExperimentConfig load_experiment_config(const std::string& path);
 
 // Every run, scene-major, then axes (by name, the last fastest), then variants, then seeds. Checks each
 // run's parameters (unknown keys, impossible values) before anything is rendered.
+// More runs than that (kMaxRuns) is an error naming the count, before any is expanded.
 std::vector<RunSpec> expand_runs(const ExperimentConfig& config);
+// The number of runs expand_runs would give (SIZE_MAX when it does not fit in size_t).
+size_t count_runs(const ExperimentConfig& config);
+// The most runs one config may have: far beyond any experiment (the largest in configs/ has a few
+// hundred), far below what fills the memory when expanded (each run holds its JSON parameters).
+constexpr size_t kMaxRuns = 100000;
 
 // Every parameter name a config may use: render options, every method's parameters, and
 // time_budget_ms.

@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -10,11 +11,15 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <system_error>
 
 #include "core/util/error.h"
+#include "core/util/machine_info.h"
+#include "core/util/temp_files.h"
 
 namespace sst {
 namespace fs = std::filesystem;
@@ -157,15 +162,66 @@ void write_with_oiio(const fs::path& temp, const std::string& path, const Pixels
   if (ec) fail(ec.message());
 }
 
+// libpng, under OIIO's PNG reader, prints "libpng error: ..." on stderr itself, and OIIO then
+// reports the same text to us, which our one-line error already carries. While a PNG is opened
+// and read, stderr (fd 2) goes to /dev/null; these reads are short and made by one thread.
+class QuietStderrForPng {
+ public:
+  explicit QuietStderrForPng(const std::string& path) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) return;  // opening a FIFO would block; open_input refuses it
+    unsigned char magic[8] = {};
+    if (FILE* f = std::fopen(path.c_str(), "rb")) {
+      size_t n = std::fread(magic, 1, 8, f);
+      std::fclose(f);
+      if (n != 8 || std::memcmp(magic, "\x89PNG\r\n\x1a\n", 8) != 0) return;
+    } else {
+      return;
+    }
+    int null_fd = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null_fd < 0) return;
+    std::fflush(stderr);
+    saved_ = ::dup(2);
+    if (saved_ >= 0) ::dup2(null_fd, 2);
+    ::close(null_fd);
+  }
+  ~QuietStderrForPng() {
+    if (saved_ < 0) return;
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    ::close(saved_);
+  }
+  QuietStderrForPng(const QuietStderrForPng&) = delete;
+  QuietStderrForPng& operator=(const QuietStderrForPng&) = delete;
+
+ private:
+  int saved_ = -1;
+};
+
+// The most pixels an image we read may have: the largest render (render_pixel_limit's cap).
+constexpr uint64_t kMaxReadPixels = uint64_t(1) << 28;
+// Bytes per channel value while reading: the float values, the raw levels and the Image gathered
+// from them (4 + 2 + 4, rounded up).
+constexpr uint64_t kReadBytesPerValue = 12;
+
 std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("cannot read image " + path + ": no such file");
   if (fs::is_directory(path, ec)) throw Error("cannot read image " + path + ": is a directory");
+  if (!fs::is_regular_file(path, ec)) throw Error("cannot read image " + path + ": not a regular file");  // a FIFO blocks
   OIIO::ImageSpec config;
   // Keep PNG colour values as stored; OIIO would otherwise premultiply by alpha.
   config.attribute("oiio:UnassociatedAlpha", 1);
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw Error("cannot read image " + path + ": " + one_line(OIIO::geterror()));
+  // The header's size is checked before the pixels are allocated: a PNG of a few dozen bytes can
+  // declare 30000x30000 pixels (a decompression bomb).
+  const OIIO::ImageSpec& spec = in->spec();
+  const uint64_t pixels = uint64_t(std::max(spec.width, 0)) * uint64_t(std::max(spec.height, 0));
+  const uint64_t bytes = pixels * uint64_t(std::max(spec.nchannels, 1)) * kReadBytesPerValue;
+  if (pixels > kMaxReadPixels || bytes > usable_memory_bytes() / 4)
+    throw Error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                " pixels is too large (at most " + std::to_string(kMaxReadPixels) + " pixels, and a quarter of this machine's memory)");
   return in;
 }
 
@@ -289,6 +345,8 @@ void write_image(const std::string& path, const Image& rgb, const std::vector<La
                  float exposure) {
   const FileFormat format = format_for(path);
   check_writable(path, rgb, layers);
+  // The temporary below is renamed over the target, which must therefore not be a device or FIFO.
+  if (!write_via_rename(path)) throw Error("cannot write image " + path + ": not a regular file");
   const fs::path target(path);
   if (target.has_parent_path()) {
     std::error_code ec;
@@ -296,6 +354,7 @@ void write_image(const std::string& path, const Image& rgb, const std::vector<La
     if (ec) throw Error("cannot write image " + path + ": cannot create its folder (" + ec.message() + ")");
   }
   const fs::path temp = temp_path_for(target);
+  TempFile guard(temp.string());  // a SIGINT during the write leaves no temporary beside the output
   switch (format) {
     case FileFormat::exr: {
       Pixels px = pack_float(rgb, layers);
@@ -310,9 +369,11 @@ void write_image(const std::string& path, const Image& rgb, const std::vector<La
       write_with_oiio(temp, path, pack_display(rgb, exposure));
       break;
   }
+  guard.release();  // renamed into place
 }
 
 Image read_image_stored(const std::string& path, bool* was_display) {
+  QuietStderrForPng quiet(path);
   auto in = open_input(path);
   const std::vector<float> values = read_all_channels(*in, path);
   if (was_display) *was_display = is_display_encoded(*in);
@@ -329,6 +390,7 @@ Image read_image(const std::string& path, bool* was_display) {
 }
 
 Image read_layer(const std::string& path, const std::string& layer) {
+  QuietStderrForPng quiet(path);
   auto in = open_input(path);
   const OIIO::ImageSpec& spec = in->spec();
   std::vector<int> channels;

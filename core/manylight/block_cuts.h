@@ -36,7 +36,9 @@ struct BlockGrid {
   int blocks_x = 0, blocks_y = 0;
   BlockGrid() = default;
   BlockGrid(int width, int height, int k)
-      : block_size(k), blocks_x((width + k - 1) / k), blocks_y((height + k - 1) / k) {}
+      : block_size(k), blocks_x(blocks_along(width, k)), blocks_y(blocks_along(height, k)) {}
+  // ceil(n / k) without forming n + k - 1, which overflows for a block size near INT_MAX.
+  static int blocks_along(int n, int k) { return n <= 0 ? 0 : (n - 1) / k + 1; }
   size_t count() const { return size_t(blocks_x) * size_t(blocks_y); }
   size_t index(int x, int y) const { return size_t(y / block_size) * size_t(blocks_x) + size_t(x / block_size); }
 };

@@ -55,6 +55,7 @@ FrameRenderer::FrameRenderer(const RenderOptions& options, const nlohmann::json&
 FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
+  check_coordinates(scene);  // before Embree sees a vertex it cannot bound
   accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel == "flat"); });
   lights_ = timer.time("light_setup", [&] { return std::make_unique<LightSampler>(scene); });
 #ifdef SST_HAVE_VULKAN
@@ -89,6 +90,7 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
                                         const Scene& scene, const Camera& camera, uint32_t seed, int width,
                                         int height, int frame) {
   if (!accel_) throw Error("FrameRenderer::render before prepare");
+  check_coordinates(camera, scene.source);  // before any ray starts there
   RenderResult result;
   result.options = options_;
   result.options.method = name;

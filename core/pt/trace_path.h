@@ -162,7 +162,8 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
     s = ns;
 
     // Russian roulette after rr_min_bounces indirect bounces; k-1 have been made to reach s.
-    if (k >= rr_min_bounces + 1 && k <= max_bounces) {
+    // (k > rr_min_bounces, not k >= rr_min_bounces + 1, which overflows at INT_MAX.)
+    if (k > rr_min_bounces && k <= max_bounces) {
       float survive = min(1.0f, max_component(beta));
       if (u_roulette >= survive) break;
       SST_PRECISE vec3 b = beta / survive;

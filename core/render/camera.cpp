@@ -1,5 +1,8 @@
 #include "core/render/camera.h"
 
+#include <algorithm>
+#include <climits>
+#include <cmath>
 #include <string>
 
 #include "core/render/pinhole.h"
@@ -38,8 +41,11 @@ void resolve_resolution(const Camera& camera, int& width, int& height) {
   float aspect = camera.aspect > 0.0f ? camera.aspect : 1.0f;
   if (width < 0 || height < 0) throw Error("image size must be positive");
   if (width == 0 && height == 0) width = 640;
-  if (width == 0) width = std::max(1, int(std::lround(float(height) * aspect)));
-  if (height == 0) height = std::max(1, int(std::lround(float(width) / aspect)));
+  // Clamped in double before the conversion: a huge size or a file's extreme aspect ratio would
+  // overflow int (validate() then refuses the size with a message).
+  auto side = [](double v) { return int(std::clamp(std::round(v), 1.0, double(INT_MAX))); };
+  if (width == 0) width = side(double(height) * aspect);
+  if (height == 0) height = side(double(width) / aspect);
 }
 
 glsl::ViewParams view_params(const PinholeCamera& camera, int width, int height, uint32_t seed) {

@@ -1,6 +1,9 @@
 #include "core/render/render_options.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "core/util/machine_info.h"
 
 #include "core/util/error.h"
 
@@ -9,14 +12,28 @@ namespace sst {
 const char* backend_names() { return "cpu, vulkan, auto"; }
 const char* denoiser_names() { return "none, atrous, svgf"; }
 
+uint64_t render_pixel_limit(uint64_t memory_bytes) {
+  return std::min<uint64_t>(memory_bytes / 4 * 3 / kRenderBytesPerPixel, uint64_t(1) << 28);
+}
+
 void validate(const RenderOptions& o) {
   if (o.width < 0 || o.height < 0) throw Error("width and height must be >= 0");
-  if (int64_t(o.width) * o.height > (int64_t(1) << 28)) throw Error("image of " + std::to_string(o.width) + "x" + std::to_string(o.height) + " pixels is too large");
+  const uint64_t pixels = uint64_t(o.width) * uint64_t(o.height);
+  const uint64_t memory = usable_memory_bytes();
+  if (pixels > render_pixel_limit(memory)) {
+    // Checked before anything is allocated: the render would otherwise be killed for memory
+    // (or take the machine down) after minutes of work.
+    auto gib = [](uint64_t bytes) { return std::to_string((bytes + (uint64_t(1) << 29)) >> 30); };
+    throw Error("image of " + std::to_string(o.width) + "x" + std::to_string(o.height) + " pixels is too large: it needs about " +
+                gib(pixels * kRenderBytesPerPixel) + " GiB, this machine has " + gib(memory) + " GiB (at most " +
+                std::to_string(render_pixel_limit(memory)) + " pixels)");
+  }
   if (o.spp < 1) throw Error("spp must be >= 1 (got " + std::to_string(o.spp) + ")");
   if (o.device < 0) throw Error("device must be >= 0 (got " + std::to_string(o.device) + ")");
   if (o.accel != "embree" && o.accel != "flat")
     throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
-  if (o.threads < 0) throw Error("threads must be >= 0");
+  if (o.threads < 0 || o.threads > kMaxThreads)
+    throw Error("threads must be in 0.." + std::to_string(kMaxThreads) + " (got " + std::to_string(o.threads) + ")");
   if (!std::isfinite(o.exposure)) throw Error("exposure must be finite");
   if (o.frames < 1) throw Error("frames must be >= 1 (got " + std::to_string(o.frames) + ")");
   if (o.frame_start < 0) throw Error("frame_start must be >= 0 (got " + std::to_string(o.frame_start) + ")");

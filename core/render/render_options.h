@@ -64,8 +64,18 @@ struct RenderOptions {
   }
 };
 
-// Throws sst::Error for impossible values (naming the option and the value).
+// Throws sst::Error for impossible values (naming the option and the value), including an image
+// larger than render_pixel_limit(usable_memory_bytes()).
 void validate(const RenderOptions& options);
+
+// The most pixels a render may have on a machine with `memory_bytes` to use: what fits in 3/4 of
+// it at kRenderBytesPerPixel, and never more than 2^28 (16384 x 16384).
+uint64_t render_pixel_limit(uint64_t memory_bytes);
+// Measured peak memory per pixel of a render (colour and AOV images, G-buffer, the methods'
+// per-pixel state, the written file): 16384 x 16384 pixels took about 48 GB, ~180 bytes a pixel.
+constexpr uint64_t kRenderBytesPerPixel = 192;
+// More threads than any machine has cores; a larger count only makes oneTBB grow its tables.
+constexpr int kMaxThreads = 4096;
 
 // The valid values of RenderOptions::backend, for error messages: "cpu, vulkan, auto".
 const char* backend_names();

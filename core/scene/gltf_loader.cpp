@@ -2,11 +2,14 @@
 
 #include "core/image/image.h"
 
+#include <stb/stb_image.h>
 #include <tbb/parallel_for.h>
 #include <tiny_gltf.h>
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -19,8 +22,11 @@
 #include <unordered_map>
 
 #include "core/scene/animation.h"
+#include "core/scene/encoded_image.h"
 #include "core/scene/node_transform.h"
 #include "core/util/error.h"
+#include "core/util/json_io.h"
+#include "core/util/machine_info.h"
 
 namespace sst {
 namespace {
@@ -100,6 +106,13 @@ std::string first_line(const std::string& text) {
 std::string tinygltf_error(const std::string& err) {
   std::string line = first_line(err);
   if (line.rfind("File not found : ", 0) == 0) return "buffer file not found: " + line.substr(17);
+  if (line.rfind("File read error : ", 0) == 0) {
+    std::string rest = line.substr(18);  // "<path> : <reason>"
+    size_t colon = rest.rfind(" : ");
+    return "cannot read buffer file " + (colon == std::string::npos ? rest : rest.substr(0, colon) + ": " + rest.substr(colon + 3));
+  }
+  // tinygltf appends the whole URI, which for a data URI is the whole buffer on one line.
+  if (line.rfind("Failed to decode 'uri'", 0) == 0) return "a buffer's data URI is not base64 of byteLength bytes";
   if (line.rfind("File size mismatch : ", 0) == 0) {
     std::string rest = line.substr(21);  // "<path>, requestedBytes N, but got M"
     size_t comma = rest.rfind(", requestedBytes ");
@@ -240,6 +253,7 @@ class GltfConverter {
   void run() {
     check_extensions();
     note_ignored_features();
+    check_implicit_accessors();
     std::vector<Instance> instances = traverse_nodes();
     std::vector<int> rig_node = build_rig_nodes(instances, read_animations());
     for (size_t i = 0; i < instances.size(); ++i) {
@@ -555,9 +569,12 @@ class GltfConverter {
       size_t len = view.byteLength;
       bool fits = offset <= len && element <= len - offset && (count - 1) <= (len - offset - element) / std::max<size_t>(stride, 1);
       if (!fits) {
+        // In long double and printed from it: the sum may exceed 2^64 (a byteOffset of 2^64-1),
+        // where a cast back to an integer is undefined.
         long double needed = (long double)offset + (long double)(count - 1) * stride + element;
-        fail(what + " reaches beyond " + view_name + " (needs " + std::to_string((unsigned long long)needed) +
-             " bytes, has " + std::to_string(len) + ")");
+        char needed_text[64];
+        std::snprintf(needed_text, sizeof needed_text, "%.0Lf", needed);
+        fail(what + " reaches beyond " + view_name + " (needs " + needed_text + " bytes, has " + std::to_string(len) + ")");
       }
     }
     return buffer.data.data() + view.byteOffset + offset;
@@ -566,6 +583,21 @@ class GltfConverter {
   const tinygltf::Accessor& accessor(int index, const std::string& what) const {
     if (index < 0 || size_t(index) >= model_.accessors.size()) fail(what + " refers to missing accessor " + std::to_string(index));
     return model_.accessors[index];
+  }
+
+  // Without a bufferView nothing in the file bounds an accessor's count (its data is implicit
+  // zeros), so the elements of all such accessors together are bounded before any is read: 40 of
+  // them in a 4.6 KB file could otherwise ask for 30 GB.
+  void check_implicit_accessors() const {
+    size_t total = 0;
+    for (size_t i = 0; i < model_.accessors.size(); ++i) {
+      const tinygltf::Accessor& a = model_.accessors[i];
+      if (a.bufferView >= 0) continue;
+      total += std::min(a.count, kMaxImplicitElements + 1);
+      if (total > kMaxImplicitElements)
+        fail("accessor " + std::to_string(i) + " has no bufferView and count " + std::to_string(a.count) +
+             ": accessors without data may hold at most " + std::to_string(kMaxImplicitElements) + " elements in all");
+    }
   }
 
   // count x components numbers of an accessor, normalisation and sparse substitution applied.
@@ -579,8 +611,7 @@ class GltfConverter {
       fail(where + " has " + std::to_string(tinygltf::GetNumComponentsInType(a.type)) + " components per element (needs " +
            std::to_string(components) + ")");
     size_t element = size_t(size) * components;
-    // Without a bufferView nothing bounds the count (the data is implicit zeros).
-    if (a.bufferView < 0 && a.count > (size_t(1) << 26)) fail(where + " has an implausible count " + std::to_string(a.count));
+    // (An accessor without a bufferView has a count bounded by check_implicit_accessors.)
     const unsigned char* p = nullptr;
     size_t stride = element;
     if (a.bufferView >= 0) {
@@ -1063,7 +1094,7 @@ class GltfConverter {
       size_t len = size_t(img.bufferView) < model_.bufferViews.size() ? model_.bufferViews[img.bufferView].byteLength : 0;
       return {checked_bytes(img.bufferView, 0, len, 1, 1, "image " + std::to_string(index)), len};
     }
-    if (img.image.empty()) fail("image " + image_label(index) + " not found or empty");
+    if (img.image.empty()) fail("image " + image_label(index) + " not found, empty or not a regular file");
     return {img.image.data(), img.image.size()};
   }
 
@@ -1083,9 +1114,25 @@ class GltfConverter {
     for (const TextureKey& k : texture_keys_)
       if (std::find(image_ids.begin(), image_ids.end(), k.image) == image_ids.end()) image_ids.push_back(k.image);
     std::vector<std::pair<const unsigned char*, size_t>> encoded;
+    uint64_t decoded_bytes = 0;
+    const uint64_t budget = usable_memory_bytes() / 4;
     for (int id : image_ids) {
       encoded.push_back(encoded_image(id));
       require_png_or_jpeg(id, encoded.back());
+      // The header's size is checked before stb allocates it (decompression bombs), and a JPEG's
+      // Huffman tables before stb indexes them (see encoded_image.h).
+      EncodedImageHeader header;
+      if (std::string why = read_encoded_image_header(encoded.back().first, encoded.back().second, header); !why.empty())
+        fail("cannot decode image " + image_label(id) + ": " + why);
+      if (header.width > kMaxTextureSide || header.height > kMaxTextureSide)
+        fail("image " + image_label(id) + " is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+             " pixels: textures may have at most " + std::to_string(kMaxTextureSide) + " per side");
+      // Decoded as stored, then converted to RGBA: 8-bit to 4 bytes a texel, 16-bit to 16.
+      decoded_bytes += uint64_t(header.width) * uint64_t(header.height) *
+                       uint64_t(header.channels * header.bytes_per_channel + (header.bytes_per_channel == 2 ? 16 : 4));
+      if (decoded_bytes > budget)
+        fail("the textures up to image " + image_label(id) + " need " + std::to_string(decoded_bytes >> 20) +
+             " MiB decoded, more than a quarter of this machine's memory (" + std::to_string(usable_memory_bytes() >> 20) + " MiB)");
     }
     std::vector<tinygltf::Image> decoded(image_ids.size());
     std::vector<std::string> errors(image_ids.size());
@@ -1093,8 +1140,10 @@ class GltfConverter {
       std::string err, warn;
       auto [bytes, size] = encoded[i];
       if (size > size_t(INT32_MAX)) err = "image larger than 2 GiB";
-      else if (!tinygltf::LoadImageData(&decoded[i], image_ids[i], &err, &warn, 0, 0, bytes, int(size), nullptr) && err.empty())
-        err = "cannot decode";
+      else if (!tinygltf::LoadImageData(&decoded[i], image_ids[i], &err, &warn, 0, 0, bytes, int(size), nullptr))
+        // tinygltf's own text only says "unsupported image format"; stb's reason (a thread-local
+        // of this thread, which just decoded) says what is wrong.
+        err = stbi_failure_reason() ? stbi_failure_reason() : "cannot decode";
       else if (!valid_decoded(decoded[i]))
         err = "unsupported pixel layout (" + std::to_string(decoded[i].component) + " channels, " +
               std::to_string(decoded[i].bits) + " bits)";
@@ -1120,6 +1169,8 @@ class GltfConverter {
     t.nearest = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST;
   }
 
+  // The largest texture side GPUs accept; larger ones are refused before decoding.
+  static constexpr int kMaxTextureSide = 16384;
   const tinygltf::Model& model_;
   const std::string& file_;
   Scene& scene_;
@@ -1130,17 +1181,84 @@ class GltfConverter {
   bool texture_transform_required_ = false;
   size_t degenerate_triangles_ = 0;
   std::unordered_map<int, std::vector<float>> float_cache_;
+  static constexpr size_t kMaxImplicitElements = size_t(1) << 24;
   std::map<TextureKey, int> texture_slots_;
   std::vector<TextureKey> texture_keys_;
 };
 
+uint32_t little_endian32(std::string_view bytes, size_t at) {
+  uint32_t v = 0;
+  for (int i = 3; i >= 0; --i) v = v << 8 | uint8_t(bytes[at + size_t(i)]);
+  return v;
+}
+
+// The JSON chunk of a GLB, after checking its 12-byte header and the lengths of its chunks
+// against the file. tinygltf 2.7 (Debian 12) compares the BIN chunk's length with the file
+// without counting the chunk's 8-byte header, so a BIN chunk up to 8 bytes too long is read past
+// the end of the buffer; nothing too long gets to it now.
+std::string_view checked_glb_json(std::string_view bytes, const std::string& name) {
+  auto fail = [&](const std::string& problem) -> std::string_view { throw Error(name + ": invalid GLB: " + problem); };
+  if (bytes.size() < 20) return fail("shorter than its 12-byte header and a chunk header");
+  if (uint32_t version = little_endian32(bytes, 4); version != 2) return fail("version " + std::to_string(version) + " (glTF 2.0 is version 2)");
+  if (uint32_t length = little_endian32(bytes, 8); length != bytes.size())
+    return fail("header says " + std::to_string(length) + " bytes, the file has " + std::to_string(bytes.size()));
+  uint64_t json_length = little_endian32(bytes, 12);
+  if (little_endian32(bytes, 16) != 0x4E4F534Au) return fail("the first chunk is not JSON");
+  if (json_length == 0 || 20 + json_length > bytes.size())
+    return fail("JSON chunk of " + std::to_string(json_length) + " bytes in a file of " + std::to_string(bytes.size()));
+  uint64_t at = 20 + json_length;
+  while (at < bytes.size()) {  // the BIN chunk, and any later chunk (which readers must skip)
+    if (bytes.size() - at < 8) return fail("truncated chunk header at byte " + std::to_string(at));
+    uint64_t chunk_length = little_endian32(bytes, at);
+    if (chunk_length > bytes.size() - at - 8)
+      return fail("chunk at byte " + std::to_string(at) + " declares " + std::to_string(chunk_length) + " bytes, " +
+                  std::to_string(bytes.size() - at - 8) + " follow");
+    at += 8 + chunk_length;
+  }
+  return bytes.substr(20, json_length);
+}
+
+// What tinygltf would mishandle in the JSON itself: nesting deep enough to overflow its
+// recursive conversion of extras/extensions, and an empty buffer, which it copies with
+// vector::at(0) (glTF requires byteLength >= 1).
+void check_gltf_json(std::string_view json_text, const std::string& name) {
+  require_json_depth(json_text, name);
+  nlohmann::json j = nlohmann::json::parse(json_text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return;  // tinygltf reports malformed JSON itself
+  auto buffers = j.find("buffers");
+  if (buffers == j.end() || !buffers->is_array()) return;
+  for (size_t i = 0; i < buffers->size(); ++i) {
+    const nlohmann::json& b = (*buffers)[i];
+    auto length = b.is_object() ? b.find("byteLength") : b.end();
+    if (length != b.end() && length->is_number() && !(length->get<double>() >= 1.0))
+      throw Error(name + ": buffer " + std::to_string(i) + " has byteLength " + length->dump() + " (glTF requires >= 1)");
+  }
+}
+
+// tinygltf's file callbacks, except that only regular files are read: its own FileExists opens
+// the file, which blocks forever on a FIFO, and a directory reads as 2^63 bytes.
+bool path_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return std::filesystem::exists(path, ec);
+}
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    if (err) *err = "not a regular file";
+    return false;
+  }
+  return tinygltf::ReadWholeFile(out, err, path, user);
+}
+
 tinygltf::Model parse(std::string_view bytes, const std::string& base_dir, const std::string& name) {
   if (bytes.size() > size_t(UINT32_MAX)) throw Error(name + ": file larger than 4 GiB");
+  bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
+  check_gltf_json(binary ? checked_glb_json(bytes, name) : bytes, name);
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(&keep_encoded_image, nullptr);
+  gltf.SetFsCallbacks({&path_exists, &tinygltf::ExpandFilePath, &read_regular_file, &tinygltf::WriteWholeFile, nullptr});
   tinygltf::Model model;
   std::string err, warn;
-  bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
   bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                                unsigned(bytes.size()), base_dir)
                    : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
@@ -1161,7 +1279,7 @@ Scene load_gltf_from_memory(std::string_view bytes, const std::string& base_dir,
 Scene load_gltf(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) throw Error(path + ": file not found");
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file");
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": not a regular file");  // a FIFO would block
   std::ifstream in(path, std::ios::binary);
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in.good() && !in.eof()) throw Error(path + ": cannot read file");

@@ -1,5 +1,11 @@
 #include "core/scene/scene.h"
 
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "core/util/error.h"
+
 namespace sst {
 void Scene::finalize_bounds() {
   bounds = Bounds3{};
@@ -28,4 +34,42 @@ int Scene::find_camera(const std::string& name_or_index) const {
 }
 
 int Scene::find_light(const std::string& name_or_index) const { return find_by_name_or_index(lights, name_or_index); }
+namespace {
+bool within_range(vec3 p) {
+  for (int i = 0; i < 3; ++i)
+    if (!(std::fabs(p[i]) <= kMaxCoordinate)) return false;  // also false for NaN
+  return true;
+}
+std::string coordinate_text(vec3 p) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", double(p.x), double(p.y), double(p.z));
+  return text;
+}
+std::string limit_text() {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(kMaxCoordinate));
+  return text;
+}
+}  // namespace
+
+void check_coordinates(const Scene& scene) {
+  if (!scene.positions.empty() && (!within_range(scene.bounds.lo) || !within_range(scene.bounds.hi))) {
+    for (size_t i = 0; i < scene.positions.size(); ++i)
+      if (!within_range(scene.positions[i]))
+        throw Error(scene.source + ": vertex " + std::to_string(i) + " at " + coordinate_text(scene.positions[i]) +
+                    " lies beyond the largest coordinate float can resolve usefully (" + limit_text() + ")");
+  }
+  for (size_t i = 0; i < scene.lights.size(); ++i)
+    if (!within_range(scene.lights[i].position))
+      throw Error(scene.source + ": light " + std::to_string(i) + " at " + coordinate_text(scene.lights[i].position) +
+                  " lies beyond the largest coordinate float can resolve usefully (" + limit_text() + ")");
+}
+
+void check_coordinates(const Camera& camera, const std::string& source) {
+  if (!within_range(camera.eye))
+    throw Error(source + ": camera" + (camera.name.empty() ? std::string() : " '" + camera.name + "'") + " at " +
+                coordinate_text(camera.eye) + " lies beyond the largest coordinate float can resolve usefully (" +
+                limit_text() + ")");
+}
+
 }  // namespace sst

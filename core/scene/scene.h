@@ -78,4 +78,14 @@ struct Scene {
   int find_light(const std::string& name_or_index) const;
 };
 
+// The largest coordinate magnitude a scene may hold. Beyond it float has no useful resolution
+// (its spacing at 1e12 is 2^16 units), squared distances approach float's range, and near 1.8e18
+// Embree's BVH build asserts. Checked before anything is built or any ray traced.
+constexpr float kMaxCoordinate = 1e12f;
+// Throws sst::Error naming the scene's source when a vertex or punctual light lies beyond
+// kMaxCoordinate (or is not finite); the bounds must be finalized.
+void check_coordinates(const Scene& scene);
+// The same for a camera's position.
+void check_coordinates(const Camera& camera, const std::string& source);
+
 }  // namespace sst

@@ -24,6 +24,15 @@ std::string cpu_model() {
 }
 }  // namespace
 
+uint64_t usable_memory_bytes() {
+  uint64_t bytes = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+  // cgroup v2 (containers, CI runners, Slurm jobs): "max" or a number of bytes.
+  std::ifstream in("/sys/fs/cgroup/memory.max");
+  unsigned long long limit = 0;
+  if (in >> limit && limit > 0 && limit < bytes) bytes = limit;
+  return bytes;
+}
+
 nlohmann::json machine_info() {
   nlohmann::json j;
   char host[256] = {0};

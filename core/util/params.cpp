@@ -41,6 +41,16 @@ double shortest_decimal(float value) {
   return double(value);
 }
 
+std::string range_text(const ParamInfo& p) {
+  if (p.type == "float") {
+    char max[32];
+    std::snprintf(max, sizeof max, "%.6g", p.max_value.get<double>());
+    return std::string("a finite number of magnitude at most ") + max;
+  }
+  if (p.type == "int") return "an integer in " + p.min_value.dump() + ".." + p.max_value.dump();
+  return "a " + p.type;
+}
+
 std::string to_flag(const std::string& snake_name) {
   std::string flag = snake_name;
   std::replace(flag.begin(), flag.end(), '_', '-');

@@ -4,8 +4,12 @@
 // unknown-key errors) is derived from that one list, so a field cannot be forgotten in one of
 // them. Names are snake_case; CLI flags are the same names with '-' for '_'.
 #pragma once
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <type_traits>
 #include <vector>
 
@@ -20,7 +24,43 @@ std::string to_flag(const std::string& snake_name);  // "max_bounces" -> "max-bo
 struct ParamInfo {
   std::string name, type, help;
   nlohmann::json default_value;
+  // The values the field's C++ type holds (null for non-numbers), so that a flag or key is
+  // refused when it does not fit instead of being narrowed ("--vpls 9999999999999" is not 1316134911).
+  nlohmann::json min_value, max_value;
 };
+
+// The range of a numeric field's type: [lowest, max] of integers; [-FLT_MAX, FLT_MAX] of floats
+// (a double beyond it would become Inf, or be undefined, when narrowed).
+template <class T>
+std::pair<nlohmann::json, nlohmann::json> value_range() {
+  if constexpr (std::is_same_v<T, bool> || !std::is_arithmetic_v<T>)
+    return {nullptr, nullptr};
+  else
+    return {std::numeric_limits<T>::lowest(), std::numeric_limits<T>::max()};
+}
+
+// Whether a JSON number fits the type T without narrowing (integers) or overflow (floats), and
+// is finite. Non-numbers are false.
+template <class T>
+bool fits(const nlohmann::json& v) {
+  if constexpr (std::is_integral_v<T>) {
+    if (v.is_number_unsigned()) return v.get<uint64_t>() <= uint64_t(std::numeric_limits<T>::max());
+    if (!v.is_number_integer()) return false;
+    int64_t i = v.get<int64_t>();
+    if constexpr (std::is_unsigned_v<T>) return i >= 0 && uint64_t(i) <= uint64_t(std::numeric_limits<T>::max());
+    else return i >= int64_t(std::numeric_limits<T>::lowest()) && i <= int64_t(std::numeric_limits<T>::max());
+  } else if constexpr (std::is_floating_point_v<T>) {
+    if (!v.is_number()) return false;
+    double d = v.get<double>();
+    return std::isfinite(d) && std::fabs(d) <= double(std::numeric_limits<T>::max());
+  } else {
+    return false;
+  }
+}
+
+// What a parameter accepts, for messages: "an integer in -2147483648..2147483647", "a finite number
+// of magnitude at most 3.40282e+38".
+std::string range_text(const ParamInfo& p);
 
 // The shortest decimal that reads back as the same float, so 0.01f is written 0.01, not
 // 0.009999999776 (floats go to JSON through double).
@@ -59,7 +99,8 @@ std::vector<ParamInfo> param_table() {
                                                            : "value";
     nlohmann::json value = field;
     if constexpr (std::is_same_v<T, float>) value = shortest_decimal(field);
-    table.push_back({name, type, help, value});
+    auto [lo, hi] = value_range<T>();
+    table.push_back({name, type, help, value, lo, hi});
   });
   return table;
 }
@@ -89,10 +130,12 @@ void params_from_json(P& params, const nlohmann::json& j, const std::string& con
       if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
         if (!it->is_number_integer() && !it->is_number_unsigned())
           throw Error("not an integer");
-        if (std::is_unsigned_v<T> && !it->is_number_unsigned() && it->template get<long long>() < 0)
-          throw Error("must not be negative");
+        if (!fits<T>(*it))
+          throw Error("out of range (" + std::to_string(std::numeric_limits<T>::lowest()) + ".." +
+                      std::to_string(std::numeric_limits<T>::max()) + ")");
       } else if constexpr (std::is_floating_point_v<T>) {
         if (!it->is_number()) throw Error("not a number");
+        if (!fits<T>(*it)) throw Error("not a finite number in the range of a float");
       } else if constexpr (std::is_same_v<T, bool>) {
         if (!it->is_boolean()) throw Error("not true/false");
       } else if constexpr (std::is_same_v<T, std::string>) {

@@ -1,6 +1,19 @@
 #include "core/manylight/sst/sst_sampler.h"
 
+#include <cmath>
+#include <string>
+
+#include "core/util/error.h"
+#include "core/util/params.h"
+
 namespace sst {
+
+void validate(const SstParams& p) {
+  // A negative floor would let the weights' distance reach zero and below; NaN would make every
+  // comparison false and the walk arbitrary.
+  if (!(p.distance_floor >= 0.0f) || !std::isfinite(p.distance_floor))
+    throw Error("sst: parameter 'distance_floor' must be finite and >= 0 (got " + nlohmann::json(shortest_decimal(p.distance_floor)).dump() + ")");
+}
 
 ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe) {
   bool glossy = lobe == SstLobe::glossy;

@@ -66,6 +66,9 @@ struct SstMethodParams {
   }
 };
 
+// Throws sst::Error for an impossible value (naming the parameter).
+void validate(const SstParams& p);
+
 enum class SstLobe { diffuse, glossy };
 
 // The weights of step 2 (sst_node_weight, sst_estimate.h) at `point`, whose brdf is the lobe's

@@ -14,6 +14,12 @@
 #ifdef SST_HAVE_VULKAN
 #include "gpu/gpu_render_context.h"
 #include "gpu/vulkan_method.h"
+#else
+namespace sst::gpu {
+// Never made without Vulkan; complete types let FrameRenderer's unique_ptrs to them be destroyed.
+class GpuRenderContext {};
+class VulkanMethod {};
+}  // namespace sst::gpu
 #endif
 
 namespace sst {

@@ -170,7 +170,9 @@ TEST(SstEvalSweep, SequencesAreMeasuredFrameByFrameWithFlicker) {
     // Temporal reuse makes the output steadier than the raw frames it comes from.
     EXPECT_LT(run["flicker"].get<double>(), run["flicker_raw"].get<double>()) << run["id"];
     EXPECT_TRUE(fs::exists(dir / "out" / "runs" / run["id"].get<std::string>() / "image.exr"));
-    if (!run["videos"]["frame"].is_null()) EXPECT_TRUE(fs::exists(dir / "out" / run["videos"]["frame"].get<std::string>()));
+    if (!run["videos"]["frame"].is_null()) {
+      EXPECT_TRUE(fs::exists(dir / "out" / run["videos"]["frame"].get<std::string>()));
+    }
   }
   // One reference per measured frame, shared by the runs (the same pose and reference settings).
   EXPECT_EQ(references.size(), 3u);

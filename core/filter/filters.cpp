@@ -135,6 +135,8 @@ Image joint_bilateral_upsample(const Image& low, const Image& low_depth, const I
   return out;
 }
 
+vec3 albedo_divisor(vec3 albedo) { return filter_albedo_divisor(albedo); }
+
 Image demodulate(const Image& light, const Image& albedo) {
   check_filter_image(light, light.width, light.height, 3, "light");
   check_filter_image(albedo, light.width, light.height, 3, "albedo");

@@ -37,6 +37,8 @@ Image joint_bilateral_upsample(const Image& low, const Image& low_depth, const I
 // light again; finite for black albedo.
 Image demodulate(const Image& light, const Image& albedo);
 Image remodulate(const Image& illumination, const Image& albedo);
+// Their per-pixel divisor, for passes that demodulate as they go.
+vec3 albedo_divisor(vec3 albedo);
 
 // The checks every backend runs before filtering: sst::Error naming the first input whose size or
 // channel count does not fit, or the impossible parameter.

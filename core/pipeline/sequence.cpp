@@ -196,9 +196,9 @@ class SequenceRunner {
   // image as the layer "raw" and gains "motion". Light is demodulated by the mean albedo of the
   // pixel's samples and remodulated by the same albedo, or by its temporal average where the
   // history is reused (core/temporal/temporal_layout.h says why not the pixel centre's), so that
-  // what no filter changed comes back unchanged. The host's
-  // conversions between the stages (demodulation, packing the per-pixel inputs, reading the
-  // history back into images) are timed as "post_convert".
+  // what no filter changed comes back unchanged. The host's conversions between the stages
+  // (demodulation, packing the per-pixel inputs, reading the history back into images) are timed
+  // as "post_convert".
   void post_process(FrameOutput& f, const CentreGBuffer& g, PostStages& post, StageTimer& timer) {
     const int w = f.color.width, h = f.color.height;
     Image raw = f.color;

@@ -24,7 +24,6 @@ void validate(const TemporalParams& p) {
 std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& indirect, const Image& albedo,
                                            const Image& depth, const Image& normal, const Image& motion,
                                            const Image& previous_depth) {
-  const Image direct_illumination = demodulate(direct, albedo), indirect_illumination = demodulate(indirect, albedo);
   std::vector<TemporalInput> in(direct.pixel_count());
   tbb::parallel_for(0, direct.height, [&](int y) {
     for (int x = 0; x < direct.width; ++x) {
@@ -36,7 +35,8 @@ std::vector<TemporalInput> temporal_inputs(const Image& direct, const Image& ind
       t.previous_depth = previous_depth.at(x, y, 0);
       t.normal = normal.rgb(x, y);
       t.motion = vec2(motion.at(x, y, 0), motion.at(x, y, 1));
-      t.luminance = vec2(luminance(direct_illumination.rgb(x, y)), luminance(indirect_illumination.rgb(x, y)));
+      const vec3 divisor = albedo_divisor(t.albedo);
+      t.luminance = vec2(luminance(t.direct / divisor), luminance(t.indirect / divisor));
       t.normal_change = 0.0f;
       if (t.depth > 0.0f) {
         const int dx[4] = {-1, 1, 0, 0}, dy[4] = {0, 0, -1, 1};
@@ -80,29 +80,29 @@ std::vector<TemporalTexel> temporal_accumulate(const std::vector<TemporalInput>&
 }
 
 TemporalImages temporal_images(const std::vector<TemporalTexel>& history, int width, int height) {
-  Image direct(width, height, 3), indirect(width, height, 3);
-  TemporalImages out{Image(), Image(), Image(width, height, 3), Image(width, height, 2), Image(width, height, 1)};
+  TemporalImages out{Image(width, height, 3), Image(width, height, 3), Image(width, height, 3), Image(width, height, 2),
+                     Image(width, height, 1)};
   tbb::parallel_for(size_t(0), history.size(), [&](size_t i) {
     const TemporalTexel& t = history[i];
+    const vec3 divisor = albedo_divisor(t.albedo);
     for (int k = 0; k < 3; ++k) {
-      direct.data[3 * i + k] = t.direct[k];
-      indirect.data[3 * i + k] = t.indirect[k];
+      out.direct.data[3 * i + k] = t.direct[k] / divisor[k];
+      out.indirect.data[3 * i + k] = t.indirect[k] / divisor[k];
       out.albedo.data[3 * i + k] = t.albedo[k];
     }
     out.indirect_moments.data[2 * i] = t.moments.z;
     out.indirect_moments.data[2 * i + 1] = t.moments.w;
     out.frames.data[i] = t.frames;
   });
-  out.direct = demodulate(direct, out.albedo);
-  out.indirect = demodulate(indirect, out.albedo);
   return out;
 }
 
 void set_temporal_indirect(std::vector<TemporalTexel>& history, const Image& illumination, const Image& albedo) {
-  const Image radiance = remodulate(illumination, albedo);
-  if (history.size() != radiance.pixel_count()) throw Error("set_temporal_indirect: size mismatch");
+  if (history.size() != illumination.pixel_count() || history.size() != albedo.pixel_count())
+    throw Error("set_temporal_indirect: size mismatch");
   tbb::parallel_for(size_t(0), history.size(), [&](size_t i) {
-    for (int k = 0; k < 3; ++k) history[i].indirect[k] = radiance.data[3 * i + k];
+    const vec3 divisor = albedo_divisor(vec3(albedo.data[3 * i], albedo.data[3 * i + 1], albedo.data[3 * i + 2]));
+    for (int k = 0; k < 3; ++k) history[i].indirect[k] = illumination.data[3 * i + k] * divisor[k];
   });
 }
 

@@ -1,5 +1,7 @@
 #include "tests/analytic_scenes.h"
 
+#include <cmath>
+
 namespace sst::test {
 namespace {
 void add_quad(Scene& s, vec3 a, vec3 b, vec3 c, vec3 d, uint32_t material) {
@@ -79,6 +81,38 @@ Scene diffuse_box(vec3 albedo, float side) {
   m.base_color = albedo;
   s.materials.push_back(m);
   add_cube(s, side, 0);
+  s.cameras.push_back(camera("inside", vec3(0.0f), 1.2f));
+  s.finalize_bounds();
+  return s;
+}
+
+Scene diffuse_sphere(float albedo, float radius, int rings) {
+  Scene s;
+  s.source = "generated:diffuse_sphere";
+  s.materials.push_back(diffuse_material("sphere", albedo, 0.0f));
+  int segments = 2 * rings;
+  for (int i = 0; i <= rings; ++i) {
+    double theta = M_PI * double(i) / double(rings);
+    for (int j = 0; j <= segments; ++j) {
+      double phi = 2.0 * M_PI * double(j) / double(segments);
+      vec3 n(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)), float(std::sin(theta) * std::sin(phi)));
+      s.positions.push_back(radius * n);
+      s.normals.push_back(n);
+      s.uvs.push_back(vec2(0.0f));
+    }
+  }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segments; ++j) {
+      uint32_t a = uint32_t(i * (segments + 1) + j), b = a + 1, c = a + uint32_t(segments + 1), d = c + 1;
+      if (i > 0) {
+        s.triangles.push_back({a, b, d});
+        s.triangle_material.push_back(0);
+      }
+      if (i < rings - 1) {
+        s.triangles.push_back({a, d, c});
+        s.triangle_material.push_back(0);
+      }
+    }
   s.cameras.push_back(camera("inside", vec3(0.0f), 1.2f));
   s.finalize_bounds();
   return s;

@@ -17,6 +17,11 @@ Scene emissive_box(float albedo, float emission, float side);
 // sided) with RGB albedo `albedo` and no emission; camera at the centre looking down -z.
 Scene diffuse_box(vec3 albedo, float side);
 
+// A closed sphere of radius `radius` centred at the origin: a UV sphere of `rings` x 2 rings
+// quads with smooth (outward) normals, diffuse (double-sided) with albedo `albedo`; camera at the
+// centre looking down -z.
+Scene diffuse_sphere(float albedo, float radius, int rings);
+
 // A punctual light; `direction` is normalised (the direction the light travels).
 PunctualLight punctual_light(LightType type, vec3 position, vec3 direction, vec3 intensity);
 

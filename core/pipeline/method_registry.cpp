@@ -1,5 +1,6 @@
 #include "core/pipeline/method_registry.h"
 
+#include "core/gi10/gi10_method.h"
 #include "core/manylight/many_light_method.h"
 #include "core/manylight/many_light_methods.h"
 #include "core/pt/pt_method.h"
@@ -18,6 +19,7 @@ std::vector<MethodInfo> all_methods() {
 #define ADD_MANY_LIGHT_METHOD(name, id) add(name##_method_info(), #name);
   SST_MANY_LIGHT_METHODS(ADD_MANY_LIGHT_METHOD)
 #undef ADD_MANY_LIGHT_METHOD
+  add(gi10_method_info(), "gi10");
   return methods;
 }
 

@@ -1,6 +1,6 @@
 // The registry of methods: each method's MethodInfo (core/render/method.h), `pt` first and then
 // the VPL methods in the order of their list (core/manylight/many_light_methods.h), from which the
-// registry is generated. The CLIs build their flags from the parameter tables.
+// registry is generated, then gi10. The CLIs build their flags from the parameter tables.
 #pragma once
 #include <memory>
 #include <nlohmann/json.hpp>

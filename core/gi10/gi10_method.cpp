@@ -1,0 +1,445 @@
+#include "core/gi10/gi10_method.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "core/accel/embree_accel.h"
+#include "core/lights/light_sampler.h"
+#include "core/pt/path_tracer.h"
+#include "core/render/camera.h"
+#include "core/shading/surface.h"
+
+namespace sst {
+
+// The CPU's buffers and the hooks of gi10_stages.h bound to them.
+struct Gi10Buffers {
+  const glsl::Gi10Frame* frame = nullptr;
+  glsl::Gi10Pixel* pixels = nullptr;
+  uint32_t* mask = nullptr;
+  vec4* radiance = nullptr;
+  vec4* sh = nullptr;
+  uint32_t* spawn = nullptr;
+  glsl::Gi10Ray* rays = nullptr;
+  uint32_t* hash = nullptr;
+  vec4* values = nullptr;
+  uint32_t* accum = nullptr;
+  vec4* denoise = nullptr;
+  vec4* feedback = nullptr;
+  uint32_t* counters = nullptr;
+  vec4* output = nullptr;
+};
+
+inline uint32_t gi_atomic_cas(uint32_t& target, uint32_t compare, uint32_t value) {
+  __atomic_compare_exchange_n(&target, &compare, value, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
+  return compare;  // the value found, as GLSL's atomicCompSwap returns
+}
+
+}  // namespace sst
+
+#define GI_CTX_PARAM const ::sst::Gi10Buffers &gi,
+#define GI_CTX gi,
+#define GF (*gi.frame)
+#define GI_PIXELS(i) gi.pixels[i]
+#define GI_MASK(i) gi.mask[i]
+#define GI_RADIANCE(i) gi.radiance[i]
+#define GI_SH(i) gi.sh[i]
+#define GI_SPAWN(i) gi.spawn[i]
+#define GI_RAYS(i) gi.rays[i]
+#define GI_HASH(i) gi.hash[i]
+#define GI_VALUES(i) gi.values[i]
+#define GI_ACCUM(i) gi.accum[i]
+#define GI_DENOISE(i) gi.denoise[i]
+#define GI_FEEDBACK(i) gi.feedback[i]
+#define GI_COUNTERS(i) gi.counters[i]
+#define GI_OUTPUT(i) gi.output[i]
+#define GI_ATOMIC_ADD(ref, v) __atomic_fetch_add(&(ref), (v), __ATOMIC_RELAXED)
+#define GI_ATOMIC_CAS(ref, compare, v) ::sst::gi_atomic_cas(ref, compare, v)
+#include "core/gi10/gi10_stages.h"
+
+namespace sst {
+
+static_assert(sizeof(glsl::Gi10Frame) == 304, "Gi10Frame must match its std430 layout");
+static_assert(sizeof(glsl::Gi10Pixel) == 64, "Gi10Pixel must match its std430 layout");
+static_assert(sizeof(glsl::Gi10Ray) == 112, "Gi10Ray must match its std430 layout");
+
+namespace {
+
+const char* kStageNames[] = {"gbuffer", "purge",  "reproject", "spawn",       "sample",      "trace",
+                             "shade",   "update", "resolve",   "blend",       "mask_mip",    "filter",
+                             "project", "interpolate", "denoise_reproject", "blur_mask", "filter_gi",
+                             "copy_probes", "feedback"};
+
+// The paper's three buckets (GI1.md §12.2); the G-buffer, feedback image and direct pass apart.
+const char* bucket_of(uint32_t stage) {
+  switch (stage) {
+    case GI10_STAGE_TRACE:
+    case GI10_STAGE_SHADE: return "ray_tracing";
+    case GI10_STAGE_PROJECT:
+    case GI10_STAGE_INTERPOLATE:
+    case GI10_STAGE_DENOISE_REPROJECT:
+    case GI10_STAGE_BLUR_MASK:
+    case GI10_STAGE_FILTER_GI: return "interpolate_denoise";
+    case GI10_STAGE_GBUFFER: return "gbuffer";
+    case GI10_STAGE_FEEDBACK: return "compose";
+    default: return "caching_sampling";
+  }
+}
+
+std::string choice(const std::string& field, const std::string& value, std::initializer_list<const char*> allowed) {
+  for (const char* a : allowed)
+    if (value == a) return value;
+  std::string list;
+  for (const char* a : allowed) list += (list.empty() ? "" : "|") + std::string(a);
+  throw Error("gi10 parameter " + field + ": '" + value + "' is not one of " + list);
+}
+
+// The CPU executor: each stage a oneTBB loop over its elements, on vectors.
+class Gi10Cpu final : public Gi10Executor {
+ public:
+  void allocate(const Gi10Sizes& s) override {
+    uint64_t px = s.pixels(), nt = s.tiles(), ns = s.spawns(), t = s.hash_tiles;
+    pixels_.assign(2 * px, glsl::Gi10Pixel{});
+    mask_.assign(2 * uint64_t(s.mask_total), kGiNoProbe);
+    radiance_.assign(2 * nt * 64, vec4(0.0f));
+    sh_.assign(2 * nt * 9, vec4(0.0f));
+    spawn_.assign(2 * ns + nt, 0u);
+    rays_.assign(ns * 64, glsl::Gi10Ray{});
+    hash_.assign(2 * t, 0u);
+    values_.assign(t * kGiCellsPerTile, vec4(0.0f));
+    accum_.assign(t * 64 * 8, 0u);
+    denoise_.assign(6 * px, vec4(0.0f));
+    feedback_.assign(px, vec4(0.0f));
+    counters_.assign(GI10_COUNTERS, 0u);
+    output_.assign(px, vec4(0.0f));
+    b_ = {&frame_,         pixels_.data(), mask_.data(),     radiance_.data(), sh_.data(),
+          spawn_.data(),   rays_.data(),   hash_.data(),     values_.data(),   accum_.data(),
+          denoise_.data(), feedback_.data(), counters_.data(), output_.data()};
+  }
+  void begin_frame(const RenderContext& context, const glsl::Gi10Frame& frame) override {
+    context_ = &context;
+    frame_ = frame;
+  }
+  double run(uint32_t stage, uint32_t pass, uint32_t count) override {
+    auto start = std::chrono::steady_clock::now();
+    const RenderContext& c = *context_;
+    const PackedLights& lights = c.lights.packed();
+    const Scene& scene = c.scene;
+    const EmbreeAccel& accel = c.accel;
+    const Gi10Buffers& gi = b_;
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, stage == GI10_STAGE_SPAWN ? 1 : 64),
+                      [&](const tbb::blocked_range<uint32_t>& r) {
+                        for (uint32_t i = r.begin(); i != r.end(); ++i)
+                          gi10_stage(scene, lights, accel, gi, stage, pass, i);
+                      });
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+  void clear_counters() override { std::fill(counters_.begin(), counters_.end(), 0u); }
+  std::vector<uint32_t> counters() override { return counters_; }
+  void read_irradiance(std::vector<vec4>& denoised, std::vector<vec4>& raw) override {
+    denoised = output_;
+    raw.assign(denoise_.begin(), denoise_.begin() + ptrdiff_t(output_.size()));
+  }
+  void read_pixels(std::vector<glsl::Gi10Pixel>& pixels) override {
+    size_t n = output_.size();
+    size_t first = (frame_.frame & 1u) * n;
+    pixels.assign(pixels_.begin() + ptrdiff_t(first), pixels_.begin() + ptrdiff_t(first + n));
+  }
+  void write_feedback(const std::vector<vec4>& image) override { feedback_ = image; }
+  FrameOutput direct(const RenderContext& context, StageTimer& timer) override {
+    PathTracerParams p;
+    p.max_bounces = 0;
+    return PathTracer(p).render(context, timer);
+  }
+
+ private:
+  const RenderContext* context_ = nullptr;
+  glsl::Gi10Frame frame_{};
+  std::vector<glsl::Gi10Pixel> pixels_;
+  std::vector<uint32_t> mask_, spawn_, hash_, accum_, counters_;
+  std::vector<vec4> radiance_, sh_, values_, denoise_, feedback_, output_;
+  std::vector<glsl::Gi10Ray> rays_;
+  Gi10Buffers b_;
+};
+
+// tan(fov_y * px * max(1 / H, H / W^2)): the angle `px` pixels subtend (GI1.md §3.4).
+float pixel_angle_tan(const glsl::ViewParams& view, float px) {
+  double fov_y = 2.0 * std::atan(double(view.tan_half_y));
+  double w = double(view.width), h = double(view.height);
+  return float(std::tan(fov_y * px * std::max(1.0 / h, h / (w * w))));
+}
+
+}  // namespace
+
+void validate(const Gi10Params& p) { resolve_gi10(p); }
+
+Gi10Resolved resolve_gi10(const Gi10Params& p) {
+  bool caps = choice("preset", p.preset, {"fair", "capsaicin"}) == "capsaicin";
+  auto pick = [&](const char* field, const std::string& v, std::initializer_list<const char*> allowed,
+                  const char* fair, const char* capsaicin) {
+    std::string c = choice(field, v, allowed);
+    return c == "auto" ? std::string(caps ? capsaicin : fair) : c;
+  };
+  Gi10Resolved r;
+  if (p.feedback) r.flags |= GI10_FEEDBACK;
+  if (pick("probe_emission", p.probe_emission, {"auto", "on", "off"}, "off", "on") == "on") r.flags |= GI10_PROBE_EMISSION;
+  if (pick("backup", p.backup, {"auto", "mean", "capsaicin"}, "mean", "capsaicin") == "capsaicin")
+    r.flags |= GI10_BACKUP_CAPSAICIN;
+  r.sh_weight = pick("sh_weight", p.sh_weight, {"auto", "solid_angle", "capsaicin"}, "solid_angle", "capsaicin") ==
+                        "capsaicin"
+                    ? 0.125f
+                    : float(2.0 * M_PI / 64.0);
+  if (pick("blur_mask", p.blur_mask, {"auto", "full", "capsaicin"}, "full", "capsaicin") == "capsaicin")
+    r.flags |= GI10_BLUR_MASK_CAPSAICIN;
+  r.capsaicin_cells = pick("cell_base", p.cell_base, {"auto", "scene", "capsaicin"}, "scene", "capsaicin") == "capsaicin";
+  if (p.short_ray_bit) r.flags |= GI10_SHORT_RAY_BIT;
+  if (p.bypass) r.flags |= GI10_BYPASS;
+  if (p.probe_filter) r.flags |= GI10_PROBE_FILTER;
+  if (p.irradiance_denoiser) r.flags |= GI10_DENOISE;
+  auto positive = [](const char* name, double v) {
+    if (!(v > 0.0)) throw Error(std::string("gi10 parameter ") + name + " must be > 0 (got " + std::to_string(v) + ")");
+  };
+  if (p.warmup_frames < 0 || p.warmup_frames > 100000) throw Error("gi10 parameter warmup_frames must be in 0..100000");
+  positive("hash_cell_px", p.hash_cell_px);
+  positive("min_cell_ratio", p.min_cell_ratio);
+  if (p.hash_buckets_log2 < 1 || p.hash_buckets_log2 > 16) throw Error("gi10 parameter hash_buckets_log2 must be in 1..16");
+  if (p.tiles_per_bucket_log2 < 0 || p.tiles_per_bucket_log2 > 6)
+    throw Error("gi10 parameter tiles_per_bucket_log2 must be in 0..6");
+  if (p.max_samples < 1 || p.max_samples > 1 << 20) throw Error("gi10 parameter max_samples must be in 1..1048576");
+  if (p.cell_px_height < 0) throw Error("gi10 parameter cell_px_height must be >= 0");
+  if (p.tile_decay < 1) throw Error("gi10 parameter tile_decay must be >= 1");
+  for (auto [name, v] : {std::pair{"reproject_normal", p.reproject_normal}, {"feedback_normal", p.feedback_normal}})
+    if (!(v >= -1.0f && v <= 1.0f)) throw Error(std::string("gi10 parameter ") + name + " must be in -1..1");
+  positive("feedback_depth", p.feedback_depth);
+  if (!(p.filter_angle >= 0.0f && p.filter_angle <= 1.0f)) throw Error("gi10 parameter filter_angle must be in 0..1");
+  if (!(p.interpolation_jitter >= 0.0f && p.interpolation_jitter <= 1024.0f))
+    throw Error("gi10 parameter interpolation_jitter must be in 0..1024");
+  if (!(p.denoise_history >= 0.5f && p.denoise_history <= 1e6f)) throw Error("gi10 parameter denoise_history must be in 0.5..1e6");
+  return r;
+}
+
+Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params) {
+  Gi10Sizes s;
+  s.width = uint32_t(width);
+  s.height = uint32_t(height);
+  s.tiles_x = (s.width + 7) / 8;
+  s.tiles_y = (s.height + 7) / 8;
+  s.spawn_x = (s.width + 15) / 16;
+  s.spawn_y = (s.height + 15) / 16;
+  uint32_t w = s.tiles_x, h = s.tiles_y;
+  s.mask_levels = 1;
+  s.mask_total = w * h;
+  while (w > 1 || h > 1) {
+    w = std::max((w + 1) / 2, 1u);
+    h = std::max((h + 1) / 2, 1u);
+    s.mask_total += w * h;
+    ++s.mask_levels;
+  }
+  s.hash_tiles = (1u << params.hash_buckets_log2) << params.tiles_per_bucket_log2;
+  return s;
+}
+
+Gi10Renderer::Gi10Renderer(const Gi10Params& params) : params_(params), resolved_(resolve_gi10(params)) {}
+
+FrameOutput Gi10Renderer::render(const RenderContext& context, Gi10Executor& executor, StageTimer& timer) {
+  Gi10Sizes sizes = gi10_sizes(context.width, context.height, params_);
+  if (context.frame == 0 || !started_ || !(sizes == sizes_)) {
+    sizes_ = sizes;
+    executor.allocate(sizes_);
+    started_ = true;
+    frame_ = 0;
+    visible_diagonal_ = 0.0f;
+    // Warm-up: the caches fill over frames, at the first view, with fresh random numbers each frame.
+    StageTimer discard;
+    RenderOptions options = context.options;
+    for (int i = 0; i < params_.warmup_frames; ++i) {
+      options.seed = context.options.seed ^ (0x9E3779B9u * uint32_t(i + 1));
+      RenderContext c{context.scene, context.accel,  context.lights, context.camera, options,
+                      context.width, context.height, true,           0};
+      render_one(c, executor, discard, true);
+    }
+  }
+  return render_one(context, executor, timer, false);
+}
+
+FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor& executor, StageTimer& timer,
+                                     bool warmup) {
+  FrameOutput out = executor.direct(context, timer);
+  glsl::Gi10Frame f{};
+  f.view = view_params(context.camera, context.width, context.height, context.options.seed);
+  f.previous_view = frame_ == 0 ? f.view : previous_view_;
+  f.width = sizes_.width;
+  f.height = sizes_.height;
+  f.tiles_x = sizes_.tiles_x;
+  f.tiles_y = sizes_.tiles_y;
+  f.spawn_x = sizes_.spawn_x;
+  f.spawn_y = sizes_.spawn_y;
+  f.mask_levels = sizes_.mask_levels;
+  f.frame = frame_;
+  f.seed = context.options.seed;
+  f.flags = resolved_.flags;
+  f.has_history = frame_ > 0 ? 1u : 0u;
+  f.diffuse_only = context.options.diffuse_only ? 1u : 0u;
+  uvec2 j16 = gi_spawn_jitter(frame_, 16u), j8 = gi_spawn_jitter(frame_, 8u);
+  f.jitter16 = {j16.x, j16.y};
+  f.jitter8 = {j8.x, j8.y};
+  f.scene_epsilon = context.accel.scene_epsilon();
+  f.k_probe = pixel_angle_tan(f.view, 8.0f);
+  float cell_px = params_.hash_cell_px;
+  if (params_.cell_px_height > 0) cell_px *= float(context.height) / float(params_.cell_px_height);
+  f.k_hash = pixel_angle_tan(f.view, cell_px);
+  f.num_buckets = 1u << params_.hash_buckets_log2;
+  f.tiles_per_bucket = 1u << params_.tiles_per_bucket_log2;
+  f.max_samples = float(params_.max_samples);
+  f.tile_decay = uint32_t(params_.tile_decay);
+  f.sh_weight = resolved_.sh_weight;
+  f.reproject_normal = params_.reproject_normal;
+  f.feedback_normal = params_.feedback_normal;
+  f.feedback_depth = params_.feedback_depth;
+  f.filter_angle = float(std::cos(M_PI * double(params_.filter_angle)));
+  f.interpolation_jitter = params_.interpolation_jitter;
+  f.denoise_history = params_.denoise_history;
+  executor.begin_frame(context, f);
+  executor.clear_counters();
+
+  std::map<std::string, double> buckets;
+  auto run = [&](uint32_t stage, uint32_t pass, uint64_t count) {
+    double ms = executor.run(stage, pass, uint32_t(count));
+    timer.add(std::string("gi10_") + kStageNames[stage], ms);
+    buckets[bucket_of(stage)] += ms;
+  };
+  run(GI10_STAGE_GBUFFER, 0, sizes_.pixels());
+  if (frame_ == 0) {
+    // The yardstick of cache cell sizes: the diagonal of what the camera sees at the first frame.
+    std::vector<glsl::Gi10Pixel> pixels;
+    executor.read_pixels(pixels);
+    vec3 lo(kInf), hi(-kInf);
+    for (const auto& p : pixels)
+      if (p.depth > 0.0f) {
+        lo = glm::min(lo, p.position);
+        hi = glm::max(hi, p.position);
+      }
+    visible_diagonal_ = lo.x <= hi.x ? glm::length(hi - lo) : context.scene.bounds.diagonal();
+    if (!(visible_diagonal_ > 0.0f)) visible_diagonal_ = std::max(context.scene.bounds.diagonal(), 1e-6f);
+  }
+  if (resolved_.capsaicin_cells) {
+    f.hash_base_exp = -10;  // 2^-10 units, Capsaicin's 1 mm where a unit is a metre
+    f.min_cell = 0.1f;
+  } else {
+    f.hash_base_exp = int(std::floor(std::log2(double(visible_diagonal_)))) - 16;
+    f.min_cell = params_.min_cell_ratio * visible_diagonal_;
+  }
+  f.hash_base_exp = std::clamp(f.hash_base_exp, -100, 100);
+  executor.begin_frame(context, f);
+
+  run(GI10_STAGE_PURGE, 0, sizes_.hash_tiles);
+  run(GI10_STAGE_REPROJECT, 0, sizes_.tiles());
+  run(GI10_STAGE_SPAWN, 0, 1);
+  run(GI10_STAGE_SAMPLE, 0, sizes_.spawns());
+  run(GI10_STAGE_TRACE, 0, sizes_.spawns() * 64);
+  run(GI10_STAGE_SHADE, 0, sizes_.spawns() * 64);
+  run(GI10_STAGE_UPDATE, 0, sizes_.hash_tiles);
+  run(GI10_STAGE_RESOLVE, 0, sizes_.spawns() * 64);
+  run(GI10_STAGE_BLEND, 0, sizes_.spawns());
+  for (uint32_t level = 1; level < sizes_.mask_levels; ++level) {
+    Gi10Sizes s = sizes_;
+    uint32_t w = s.tiles_x, h = s.tiles_y;
+    for (uint32_t i = 0; i < level; ++i) {
+      w = std::max((w + 1) / 2, 1u);
+      h = std::max((h + 1) / 2, 1u);
+    }
+    run(GI10_STAGE_MASK_MIP, level, uint64_t(w) * h);
+  }
+  if (params_.probe_filter) {
+    run(GI10_STAGE_COPY_PROBES, 0, sizes_.tiles() * 64);
+    run(GI10_STAGE_FILTER, 0, sizes_.spawns() * 64);
+    run(GI10_STAGE_FILTER, 1, sizes_.spawns() * 64);
+  }
+  run(GI10_STAGE_PROJECT, 0, sizes_.spawns());
+  run(GI10_STAGE_INTERPOLATE, 0, sizes_.pixels());
+  if (params_.irradiance_denoiser) {
+    run(GI10_STAGE_DENOISE_REPROJECT, 0, sizes_.pixels());
+    run(GI10_STAGE_BLUR_MASK, 0, sizes_.pixels());
+    run(GI10_STAGE_FILTER_GI, 0, sizes_.pixels());
+    run(GI10_STAGE_FILTER_GI, 1, sizes_.pixels());
+  }
+
+  // Compose: L = Le + direct (the direct pass) + albedo / pi x E_out, with the samples' albedo.
+  auto start = std::chrono::steady_clock::now();
+  std::vector<vec4> denoised, raw;
+  executor.read_irradiance(denoised, raw);
+  const std::vector<vec4>& e = params_.irradiance_denoiser ? denoised : raw;
+  Image raw_image(context.width, context.height), e_image(context.width, context.height);
+  std::vector<vec4> feedback(sizes_.pixels());
+  for (int y = 0; y < context.height; ++y)
+    for (int x = 0; x < context.width; ++x) {
+      size_t i = size_t(y) * size_t(context.width) + size_t(x);
+      vec3 irradiance = glm::max(vec3(e[i].x, e[i].y, e[i].z), vec3(0.0f));
+      if (!is_finite(irradiance)) irradiance = vec3(0.0f);
+      vec3 indirect = out.albedo.rgb(x, y) * irradiance * float(1.0 / M_PI);
+      vec3 color = out.direct.rgb(x, y) + indirect;
+      out.indirect.set_rgb(x, y, indirect);
+      out.color.set_rgb(x, y, color);
+      e_image.set_rgb(x, y, irradiance);
+      raw_image.set_rgb(x, y, glm::max(vec3(raw[i].x, raw[i].y, raw[i].z), vec3(0.0f)));
+      feedback[i] = vec4(color, 0.0f);
+    }
+  executor.write_feedback(feedback);
+  double compose_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  timer.add("gi10_compose", compose_ms);
+  buckets["compose"] += compose_ms;
+  run(GI10_STAGE_FEEDBACK, 0, sizes_.pixels());
+
+  previous_view_ = f.view;
+  ++frame_;
+  if (warmup) return out;
+  std::vector<uint32_t> c = executor.counters();
+  double pixels = double(sizes_.pixels());
+  nlohmann::json counters = {{"probes", c[GI10_COUNT_PROBES]},
+                             {"patched_probes", c[GI10_COUNT_PATCHED]},
+                             {"empty_tiles", c[GI10_COUNT_EMPTY]},
+                             {"probe_rays", uint64_t(c[GI10_COUNT_PROBES]) * 64},
+                             {"probe_hits", c[GI10_COUNT_HITS]},
+                             {"insert_failed", c[GI10_COUNT_INSERT_FAILED]},
+                             {"new_tiles", c[GI10_COUNT_NEW_TILES]},
+                             {"live_tiles", c[GI10_COUNT_LIVE_TILES]},
+                             {"evicted_tiles", c[GI10_COUNT_EVICTED]},
+                             {"feedback_rays", c[GI10_COUNT_FEEDBACK]},
+                             {"cache_shadow_rays", c[GI10_COUNT_SHADOW_RAYS]},
+                             {"bypass_rays", c[GI10_COUNT_BYPASS]},
+                             {"emissive_rays", c[GI10_COUNT_EMISSIVE]},
+                             {"probe_rays_per_pixel", double(c[GI10_COUNT_PROBES]) * 64.0 / pixels},
+                             {"cache_shadow_rays_per_pixel", double(c[GI10_COUNT_SHADOW_RAYS]) / pixels},
+                             {"frames_rendered", frame_},
+                             {"visible_diagonal", visible_diagonal_},
+                             {"cell_base", std::ldexp(1.0, f.hash_base_exp)},
+                             {"min_cell", f.min_cell}};
+  out.method_counters = counters;
+  out.method_counters["buckets_ms"] = buckets;
+  out.counters.bounce_rays += uint64_t(c[GI10_COUNT_PROBES]) * 64;
+  out.counters.shadow_rays += c[GI10_COUNT_SHADOW_RAYS];
+  out.extra_layers = {{"gi10_irradiance", e_image}, {"gi10_irradiance_raw", raw_image}};
+  return out;
+}
+
+Gi10Method::Gi10Method(const Gi10Params& params) : renderer_(params), cpu_(std::make_unique<Gi10Cpu>()) {}
+Gi10Method::~Gi10Method() = default;
+
+FrameOutput Gi10Method::render(const RenderContext& context, StageTimer& timer) {
+  return renderer_.render(context, *cpu_, timer);
+}
+
+nlohmann::json Gi10Method::params() const { return params_to_json(renderer_.params()); }
+
+MethodInfo gi10_method_info() {
+  return method_info<Gi10Params>(
+      "gi10",
+      "GI-1.0 (Boisse et al. 2022): screen probes at 1/4 ray per pixel over a world-space hash-grid radiance cache, "
+      "reprojected, filtered and denoised over frames (warm-up frames first), plus sst's direct pass",
+      [](const Gi10Params& p) -> std::unique_ptr<Method> { return std::make_unique<Gi10Method>(p); });
+}
+
+}  // namespace sst

@@ -1,0 +1,93 @@
+// The parameters of `gi10` (GI-1.0, GI1.md §11 with sst's choices of §7.2). Every constant of
+// Capsaicin's implementation is a field with its default; the switches in which the presets
+// differ read "auto" and take the preset's value (resolve_gi10).
+#pragma once
+#include <string>
+
+#include "core/gi10/gi10_layout.h"
+#include "core/util/params.h"
+
+namespace sst {
+
+struct Gi10Params {
+  std::string preset = "fair";
+  bool feedback = true;
+  std::string probe_emission = "auto";
+  std::string backup = "auto";
+  std::string sh_weight = "auto";
+  std::string blur_mask = "auto";
+  std::string cell_base = "auto";
+  int warmup_frames = 64;
+  float hash_cell_px = 32.0f;
+  int cell_px_height = 1080;
+  float min_cell_ratio = 0.003f;
+  int hash_buckets_log2 = 12;
+  int tiles_per_bucket_log2 = 4;
+  int max_samples = 16;
+  int tile_decay = 50;
+  float reproject_normal = 0.95f;
+  float feedback_normal = 0.5f;
+  float feedback_depth = 0.05f;
+  float filter_angle = 0.02f;
+  float interpolation_jitter = 16.0f;
+  float denoise_history = 8.0f;
+  bool probe_filter = true;
+  bool irradiance_denoiser = true;
+  bool bypass = true;
+  bool short_ray_bit = true;
+
+  template <class V>
+  void visit(V&& v) {
+    v("preset", preset,
+      "fair: sst's direct pass for all direct light, probes see reflected light only, the corrected SH weight "
+      "2 pi/64, the mean as fill of empty texels, scene-relative cache cells; capsaicin: AMD Capsaicin v1.2's "
+      "behaviour (emitters seen by probes return their emission, SH weight 1/8, its fill, 1 mm / 0.1 cell base)");
+    v("feedback", feedback,
+      "temporal radiance feedback: cache points visible last frame take last frame's image (light of every bounce) "
+      "instead of a light sample (one bounce)");
+    v("probe_emission", probe_emission, "auto|on|off: probe rays that hit an emitter return its emission (on "
+      "double-counts direct light with sst's direct pass)");
+    v("backup", backup, "auto|mean|capsaicin: radiance of probe texels no ray reached (GI1.md B4)");
+    v("sh_weight", sh_weight, "auto|solid_angle|capsaicin: SH projection weight per texel, 2 pi/64 or 1/8 (B3)");
+    v("blur_mask", blur_mask, "auto|full|capsaicin: the denoiser's blur-mask dilation; capsaicin skips the centre "
+      "row and column (B7)");
+    v("cell_base", cell_base, "auto|scene|capsaicin: cache cells are 2^k times 2^(floor(log2 D)-16) with D the "
+      "diagonal of the points visible at frame 0 and at least min_cell_ratio D (scene), or 2^-10 units and at "
+      "least 0.1 units (capsaicin)");
+    v("warmup_frames", warmup_frames,
+      "frames rendered at the first view before frame 0 of a render or sequence (untimed, discarded): the caches "
+      "fill over frames");
+    v("hash_cell_px", hash_cell_px, "projected size of a cache cell in pixels at an image cell_px_height high "
+      "(Capsaicin 32 at 1080)");
+    v("cell_px_height", cell_px_height, "image height at which hash_cell_px holds; other heights scale it, so cache "
+      "cells keep their world size across resolutions (0: hash_cell_px at every height, as Capsaicin)");
+    v("min_cell_ratio", min_cell_ratio, "smallest cache cell as a fraction of the visible diagonal (cell_base scene)");
+    v("hash_buckets_log2", hash_buckets_log2,
+      "log2 of the cache's buckets (Capsaicin 12; a full bucket loses rays: counters.insert_failed)");
+    v("tiles_per_bucket_log2", tiles_per_bucket_log2, "log2 of the hash tiles per bucket (linear-probing length)");
+    v("max_samples", max_samples, "cache cells' sample-count cap: the average's window and the mip threshold");
+    v("tile_decay", tile_decay, "frames without a touch after which a hash tile is freed");
+    v("reproject_normal", reproject_normal, "cosine a pixel's normal must exceed to continue a previous probe");
+    v("feedback_normal", feedback_normal, "cosine of the feedback's normal test against the previous G-buffer");
+    v("feedback_depth", feedback_depth, "relative depth tolerance of the feedback's test");
+    v("filter_angle", filter_angle, "probe filter's parallax threshold, in units of pi (cos(0.02 pi))");
+    v("interpolation_jitter", interpolation_jitter, "pixels by which the probe search of a pixel is jittered");
+    v("denoise_history", denoise_history, "the denoiser's history cap: lerp(4, this x min(n, 8), beta) x vignette");
+    v("probe_filter", probe_filter, "filter traced probes across their neighbours (paper Algorithm 5)");
+    v("irradiance_denoiser", irradiance_denoiser, "GI-1.0's own temporal denoiser; off: the interpolated irradiance");
+    v("bypass", bypass, "probe rays shorter than a cell keep their own light sample instead of the cell's");
+    v("short_ray_bit", short_ray_bit, "the short-ray bit (hit closer than a hash tile) in the cache key");
+  }
+};
+
+// The flags and weights the preset and the "auto" fields resolve to; throws sst::Error naming a
+// field whose value is not one of its choices.
+struct Gi10Resolved {
+  uint32_t flags = 0;
+  float sh_weight = 0.0f;
+  bool capsaicin_cells = false;
+};
+Gi10Resolved resolve_gi10(const Gi10Params& p);
+void validate(const Gi10Params& p);
+
+}  // namespace sst

@@ -37,9 +37,13 @@ SST_FUNC vec3 gi_hemi_direction(vec2 uv) {
   return vec3(x, y, z);
 }
 
-// The inverse: a local direction (z >= 0; z < 0 folds onto the hemisphere) to (u, v).
+// The inverse: a local direction (z >= 0; z < 0 folds onto the hemisphere) to (u, v). Near the
+// pole r^2 = 1 - |z| is taken as (x^2 + y^2) / (1 + |z|): 1 - |z| would keep only z's rounding
+// there (every direction within 2.4e-4 rad of the normal would map to the centre, texel 36).
 SST_FUNC vec2 gi_hemi_uv(vec3 d) {
-  SST_PRECISE float r = sqrt(max(1.0f - abs(d.z), 0.0f));
+  SST_PRECISE float az = abs(d.z);
+  SST_PRECISE float r2 = az > 0.5f ? (d.x * d.x + d.y * d.y) / (1.0f + az) : 1.0f - az;
+  SST_PRECISE float r = sqrt(max(r2, 0.0f));
   SST_PRECISE float phi = accurate_atan2(abs(d.y), abs(d.x)) * (2.0f / kPi);  // in [0, 1]
   SST_PRECISE float tb = phi * r;  // |b|
   SST_PRECISE float ta = r - tb;   // |a|
@@ -64,7 +68,9 @@ SST_FUNC vec3 gi_texel_local_direction(uint c, vec2 f) {
 }
 
 // The probe frame (b1, b2, n) of a unit geometric normal: CPU and GPU must build the same one, or
-// a texel would mean another direction on each.
+// a texel would mean another direction on each. Capsaicin swaps x and z when n.z = 0; also when
+// n lies within 1e-15 of +-x, where p.z^2 + p.y^2 would underflow (to 0 on a GPU that flushes
+// denormals) and k be infinite.
 struct GiFrame {
   vec3 b1;
   vec3 b2;
@@ -74,7 +80,8 @@ struct GiFrame {
 SST_FUNC GiFrame gi_frame(vec3 n) {
   GiFrame f;
   f.n = n;
-  bool swap = n.z == 0.0f;
+  SST_PRECISE float q = n.z * n.z + n.y * n.y;
+  bool swap = n.z == 0.0f || q < 1e-30f;
   vec3 p = swap ? vec3(n.z, n.y, n.x) : n;
   SST_PRECISE float k = 1.0f / sqrt(p.z * p.z + p.y * p.y);
   vec3 b = vec3(0.0f, -p.z * k, p.y * k);
@@ -242,7 +249,12 @@ SST_FUNC vec4 gi_cell_update(vec4 value, vec3 batch_sum, float k, float cap) {
     r = vec4(old_mean.x + (new_mean.x - old_mean.x) * a, old_mean.y + (new_mean.y - old_mean.y) * a,
              old_mean.z + (new_mean.z - old_mean.z) * a, old_w + (new_w - old_w) * a);
   }
-  return r * count;
+  r = r * count;
+  // The count is an integer: count with samples, one less without. The lerp above gives it only
+  // to a rounding (13.999999, or -2e-7 for a cell emptied), which would fail "count >= 16" on a
+  // mip's sum and leave emptied cells with a residue of negative count and radiance.
+  r.w = k > 0.0f ? count : max(count - 1.0f, 0.0f);
+  return r;
 }
 
 // ---- Halton spawn jitter (bases 2 and 3, period 256, one jitter per frame for all tiles) -------
@@ -280,7 +292,11 @@ SST_FUNC uvec2 gi_fixed_split(float v) {
   float x = v == v ? clamp(v, 0.0f, kGiFixedMax) : 0.0f;  // NaN counts as 0
   float hi = floor(x * (1.0f / 256.0f));
   SST_PRECISE float rest = x - hi * 256.0f;
-  float lo = min(floor(rest * 16777216.0f + 0.5f), 4294967295.0f);
+  // Rounded half up as floor(y) + (y - floor(y) >= 1/2), both exact: floor(y + 0.5) would round
+  // y + 0.5 to even first where y is an odd integer in [2^23, 2^24) (rest in [0.5, 1)), one unit up.
+  SST_PRECISE float y = rest * 16777216.0f;
+  SST_PRECISE float lo = floor(y);
+  lo = min(y - lo >= 0.5f ? lo + 1.0f : lo, 4294967295.0f);
   return uvec2(uint(lo), uint(hi));
 }
 

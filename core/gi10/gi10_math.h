@@ -7,6 +7,7 @@
 #define SST_CORE_GI10_GI10_MATH_H
 #include "core/math/accurate_math.h"
 #include "core/math/vector_math.h"
+#include "core/rng/hash_rng.h"
 
 SST_BEGIN
 
@@ -123,13 +124,7 @@ SST_FUNC float gi_sh_cosine(uint k, vec3 n) {
   return band * gi_sh_basis(k, n);
 }
 
-// ---- hashes of the world cache (PCG; xxHash32's avalanche) --------------------------------------
-SST_FUNC uint gi_pcg(uint v) {
-  uint state = v * 747796405u + 2891336453u;
-  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-  return (word >> 22u) ^ word;
-}
-
+// ---- hashes of the world cache (pcg_hash of core/rng; xxHash32's avalanche) ----------------------
 SST_FUNC uint gi_xx(uint v) {
   uint r = v + 374761393u;
   r = 668265263u * ((r << 17u) | (r >> 15u));
@@ -148,14 +143,14 @@ struct GiCellKey {
 
 // H(e1..e8) = h(e1 + h(e2 + ... h(e8))), level first, short-ray bit innermost.
 SST_FUNC uint gi_key_pcg(SST_IN(GiCellKey) k) {
-  uint h = gi_pcg(k.short_ray);
-  h = gi_pcg(k.dir.z + h);
-  h = gi_pcg(k.dir.y + h);
-  h = gi_pcg(k.dir.x + h);
-  h = gi_pcg(k.tile.z + h);
-  h = gi_pcg(k.tile.y + h);
-  h = gi_pcg(k.tile.x + h);
-  return gi_pcg(k.level + h);
+  uint h = pcg_hash(k.short_ray);
+  h = pcg_hash(k.dir.z + h);
+  h = pcg_hash(k.dir.y + h);
+  h = pcg_hash(k.dir.x + h);
+  h = pcg_hash(k.tile.z + h);
+  h = pcg_hash(k.tile.y + h);
+  h = pcg_hash(k.tile.x + h);
+  return pcg_hash(k.level + h);
 }
 
 SST_FUNC uint gi_key_xx(SST_IN(GiCellKey) k) {

@@ -13,7 +13,7 @@
 //   0..2 gi_hemi_direction(uv), 3..4 gi_hemi_uv(d), 5 gi_texel_of_local(d),
 //   6..14 gi_frame(n) (b1, b2, n), 15..22 gi_cell_address's key, 23..24 its offset,
 //   25 its cell size, 26..27 bucket (4096) and checksum of that key, 28..29 of the input key,
-//   30 gi_pcg(word), 31 gi_xx(word), 32 gi_hysteresis(l1, l2), 33..36 gi_cell_update,
+//   30 pcg_hash(word), 31 gi_xx(word), 32 gi_hysteresis(l1, l2), 33..36 gi_cell_update,
 //   37..38 gi_fixed_split (lo, hi), 39 gi_fixed_value of them, 40..41 gi_spawn_jitter(frame, 16),
 //   42 gi_texel_of(frame of n, gi_texel_direction(frame of n, i & 63)), 43..45 that direction,
 //   46..54 gi_sh_basis(0..8, d), 55 gi_cell_index(word % 4096, offset, i & 3), 56..63 0.
@@ -78,7 +78,7 @@ void main() {
   results[o + 28u] = gi_key_bucket(key, 4096u);
   results[o + 29u] = gi_key_checksum(key);
   uint word = inputs[q + 42u];
-  results[o + 30u] = gi_pcg(word);
+  results[o + 30u] = pcg_hash(word);
   results[o + 31u] = gi_xx(word);
 
   put1(o + 32u, gi_hysteresis(qf(q + 22u), qf(q + 23u)));

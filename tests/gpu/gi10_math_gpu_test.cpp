@@ -180,7 +180,7 @@ std::vector<uint32_t> cpu_outputs(const uint32_t* w, uint32_t i) {
   k.short_ray = w[41];
   r[28] = gi_key_bucket(k, 4096u);
   r[29] = gi_key_checksum(k);
-  r[30] = gi_pcg(w[42]);
+  r[30] = pcg_hash(w[42]);
   r[31] = gi_xx(w[42]);
   r[32] = bits(gi_hysteresis(f(22), f(23)));
   vec4 value = gi_cell_update(vec4(f(24), f(25), f(26), f(27)), f3(28), f(31), f(32));
@@ -217,7 +217,7 @@ const Field kFields[] = {
     {"cell offset", 23, 2, false, 0},
     {"cell size", 25, 1, true, 0},
     {"bucket/checksum", 26, 4, false, 0},
-    {"gi_pcg/gi_xx", 30, 2, false, 0},
+    {"pcg_hash/gi_xx", 30, 2, false, 0},
     {"gi_hysteresis", 32, 1, true, 6e-8},
     {"gi_cell_update", 33, 4, true, 0},
     {"gi_fixed_split", 37, 2, false, 0},

@@ -42,6 +42,11 @@ using glm::vec4;
 #define GI10_STAGE_FILTER_GI 16u
 #define GI10_STAGE_COPY_PROBES 17u
 #define GI10_STAGE_FEEDBACK 18u
+#define GI10_STAGE_EMPTY_TILES 19u
+#define GI10_STAGE_LIST_COUNT 20u
+#define GI10_STAGE_LIST_SCAN 21u
+#define GI10_STAGE_LIST_COMPACT 22u
+#define GI10_STAGE_PATCH 23u
 
 // Counters (Gi10 counters buffer, uint each).
 #define GI10_COUNT_PROBES 0u          // spawned probes traced

@@ -71,7 +71,8 @@ namespace {
 const char* kStageNames[] = {"gbuffer", "purge",  "reproject", "spawn",       "sample",      "trace",
                              "shade",   "update", "resolve",   "blend",       "mask_mip",    "filter",
                              "project", "interpolate", "denoise_reproject", "blur_mask", "filter_gi",
-                             "copy_probes", "feedback"};
+                             "copy_probes", "feedback", "empty_tiles", "list_count", "list_scan",
+                             "list_compact", "patch"};
 
 // The paper's three buckets (GI1.md §12.2); the G-buffer, feedback image and direct pass apart.
 const char* bucket_of(uint32_t stage) {
@@ -106,7 +107,7 @@ class Gi10Cpu final : public Gi10Executor {
     mask_.assign(2 * uint64_t(s.mask_total), kGiNoProbe);
     radiance_.assign(2 * nt * 64, vec4(0.0f));
     sh_.assign(2 * nt * 9, vec4(0.0f));
-    spawn_.assign(2 * ns + nt, 0u);
+    spawn_.assign(3 * ns + 2 * nt + (ns + 255) / 256 + (nt + 255) / 256 + 2, 0u);
     rays_.assign(ns * 64, glsl::Gi10Ray{});
     hash_.assign(2 * t, 0u);
     values_.assign(t * kGiCellsPerTile, vec4(0.0f));
@@ -130,7 +131,7 @@ class Gi10Cpu final : public Gi10Executor {
     const Scene& scene = c.scene;
     const EmbreeAccel& accel = c.accel;
     const Gi10Buffers& gi = b_;
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, stage == GI10_STAGE_SPAWN ? 1 : 64),
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, 64),
                       [&](const tbb::blocked_range<uint32_t>& r) {
                         for (uint32_t i = r.begin(); i != r.end(); ++i)
                           gi10_stage(scene, lights, accel, gi, stage, pass, i);
@@ -337,7 +338,13 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
 
   run(GI10_STAGE_PURGE, 0, sizes_.hash_tiles);
   run(GI10_STAGE_REPROJECT, 0, sizes_.tiles());
-  run(GI10_STAGE_SPAWN, 0, 1);
+  run(GI10_STAGE_SPAWN, 0, sizes_.spawns());
+  run(GI10_STAGE_EMPTY_TILES, 0, sizes_.tiles());
+  uint64_t blocks = (sizes_.spawns() + 255) / 256 + (sizes_.tiles() + 255) / 256;
+  run(GI10_STAGE_LIST_COUNT, 0, blocks);
+  run(GI10_STAGE_LIST_SCAN, 0, 1);
+  run(GI10_STAGE_LIST_COMPACT, 0, blocks);
+  run(GI10_STAGE_PATCH, 0, std::min(sizes_.spawns(), sizes_.tiles()));
   run(GI10_STAGE_SAMPLE, 0, sizes_.spawns());
   run(GI10_STAGE_TRACE, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_SHADE, 0, sizes_.spawns() * 64);

@@ -247,65 +247,139 @@ SST_FUNC void gi_stage_reproject(GI_CTX_PARAM uint tile) {
 }
 
 // ---- S4 + S5: spawn probes and move rays from tiles that have a probe to disoccluded ones ----------
-// One invocation builds the lists in tile order and pairs them through frame-keyed shuffles, so
-// the result does not depend on a race (Capsaicin's atomic appends and exchanges do).
-SST_FUNC void gi_shuffle(GI_CTX_PARAM uint first, uint n, SST_INOUT(HashRng) rng) {
-  for (uint i = n; i > 1u; --i) {
-    uint j = min(uint(hash_rng_next(rng) * float(i)), i - 1u);
-    uint t = GI_SPAWN(first + i - 1u);
-    GI_SPAWN(first + i - 1u) = GI_SPAWN(first + j);
-    GI_SPAWN(first + j) = t;
-  }
+// Capsaicin appends both lists atomically and pairs them with random exchanges (a race). Here the
+// lists are compacted in tile order (a block scan, so no invocation loops over the whole grid:
+// lavapipe stops any invocation after 65535 loop iterations) and paired by a frame-keyed affine
+// permutation, so the result is the same on every backend and thread count.
+// SPAWN layout: [0, Ns) the spawn list (packed seed or kGiNoProbe); [Ns, 2Ns) override flags;
+// [2Ns, 3Ns) the override list; [3Ns, 3Ns + Nt) empty-tile flags; then the empty list (Nt); then
+// the blocks' counts (override blocks, then empty blocks); then the two list lengths.
+SST_CONSTANT uint kGiBlock = 256u;
+
+SST_FUNC uint gi_override_blocks(SST_IN(Gi10Frame) f) { return (gi_spawns(f) + kGiBlock - 1u) / kGiBlock; }
+SST_FUNC uint gi_empty_blocks(SST_IN(Gi10Frame) f) { return (gi_tiles(f) + kGiBlock - 1u) / kGiBlock; }
+SST_FUNC uint gi_spawn_block_base(SST_IN(Gi10Frame) f) { return 3u * gi_spawns(f) + 2u * gi_tiles(f); }
+SST_FUNC uint gi_spawn_words(SST_IN(Gi10Frame) f) {
+  return gi_spawn_block_base(f) + gi_override_blocks(f) + gi_empty_blocks(f) + 2u;
 }
 
-SST_FUNC void gi_stage_spawn(GI_CTX_PARAM uint index) {
-  if (index != 0u) return;
+SST_FUNC void gi_stage_spawn(GI_CTX_PARAM uint j) {
   uint cur = gi_parity(GF);
   uint ns = gi_spawns(GF);
-  uint nt = gi_tiles(GF);
-  uint mask_base = cur * gi_mask_total(GF);
-  uint overrides = 0u;
-  uint spawned = 0u;
-  for (uint j = 0u; j < ns; ++j) {
-    uvec2 seed = min(uvec2((j % GF.spawn_x) * 16u, (j / GF.spawn_x) * 16u) + GF.jitter16, uvec2(GF.width - 1u, GF.height - 1u));
-    GI_SPAWN(j) = kGiNoProbe;
-    if (gi_sky(gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)))) continue;
-    GI_SPAWN(j) = gi_pack(seed);
-    ++spawned;
-    if (GI_MASK(mask_base + (seed.y / 8u) * GF.tiles_x + seed.x / 8u) != kGiNoProbe) {
-      GI_SPAWN(ns + overrides) = j;
-      ++overrides;
+  uvec2 seed = min(uvec2((j % GF.spawn_x) * 16u, (j / GF.spawn_x) * 16u) + GF.jitter16, uvec2(GF.width - 1u, GF.height - 1u));
+  bool sky = gi_sky(gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)));
+  GI_SPAWN(j) = sky ? kGiNoProbe : gi_pack(seed);
+  uint tile_mask = GI_MASK(cur * gi_mask_total(GF) + (seed.y / 8u) * GF.tiles_x + seed.x / 8u);
+  GI_SPAWN(ns + j) = (!sky && tile_mask != kGiNoProbe) ? 1u : 0u;  // an override: its tile has a probe
+  if (!sky) GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_PROBES), 1u);
+}
+
+// A tile is empty when reprojection found no probe for it, this frame's spawn does not land in it
+// and its first pixel is a surface.
+SST_FUNC void gi_stage_empty_tiles(GI_CTX_PARAM uint t) {
+  uint cur = gi_parity(GF);
+  uint ns = gi_spawns(GF);
+  uvec2 tp = uvec2(t % GF.tiles_x, t / GF.tiles_x);
+  bool empty = GI_MASK(cur * gi_mask_total(GF) + t) == kGiNoProbe;
+  uint spawned = GI_SPAWN((tp.y / 2u) * GF.spawn_x + tp.x / 2u);
+  if (spawned != kGiNoProbe) {
+    uvec2 s = gi_unpack(spawned);
+    if (s.x / 8u == tp.x && s.y / 8u == tp.y) empty = false;
+  }
+  if (empty && gi_sky(gi_pixel(GI_CTX cur, gi_pixel_index(GF, tp * 8u)))) empty = false;
+  GI_SPAWN(3u * ns + t) = empty ? 1u : 0u;
+}
+
+// Block b of the override flags (b < override blocks) or of the empty flags: its count.
+SST_FUNC void gi_stage_list_count(GI_CTX_PARAM uint b) {
+  uint ns = gi_spawns(GF);
+  uint nbo = gi_override_blocks(GF);
+  bool overrides = b < nbo;
+  uint first = overrides ? ns : 3u * ns;
+  uint n = overrides ? ns : gi_tiles(GF);
+  uint block = overrides ? b : b - nbo;
+  uint count = 0u;
+  for (uint i = block * kGiBlock; i < min((block + 1u) * kGiBlock, n); ++i) count += GI_SPAWN(first + i);
+  GI_SPAWN(gi_spawn_block_base(GF) + b) = count;
+}
+
+// One invocation: the blocks' counts become their first list positions; the list lengths follow.
+SST_FUNC void gi_stage_list_scan(GI_CTX_PARAM uint index) {
+  if (index != 0u) return;
+  uint base = gi_spawn_block_base(GF);
+  uint nbo = gi_override_blocks(GF);
+  uint nbe = gi_empty_blocks(GF);
+  uint sum = 0u;
+  for (uint b = 0u; b < nbo; ++b) {
+    uint c = GI_SPAWN(base + b);
+    GI_SPAWN(base + b) = sum;
+    sum += c;
+  }
+  GI_SPAWN(base + nbo + nbe) = sum;
+  sum = 0u;
+  for (uint b = 0u; b < nbe; ++b) {
+    uint c = GI_SPAWN(base + nbo + b);
+    GI_SPAWN(base + nbo + b) = sum;
+    sum += c;
+  }
+  GI_SPAWN(base + nbo + nbe + 1u) = sum;
+  GI_COUNTERS(GI10_COUNT_EMPTY) = sum;
+}
+
+SST_FUNC void gi_stage_list_compact(GI_CTX_PARAM uint b) {
+  uint ns = gi_spawns(GF);
+  uint nbo = gi_override_blocks(GF);
+  bool overrides = b < nbo;
+  uint flags = overrides ? ns : 3u * ns;
+  uint list = overrides ? 2u * ns : 3u * ns + gi_tiles(GF);
+  uint n = overrides ? ns : gi_tiles(GF);
+  uint block = overrides ? b : b - nbo;
+  uint at = GI_SPAWN(gi_spawn_block_base(GF) + b);
+  for (uint i = block * kGiBlock; i < min((block + 1u) * kGiBlock, n); ++i)
+    if (GI_SPAWN(flags + i) != 0u) {
+      GI_SPAWN(list + at) = i;
+      ++at;
     }
+}
+
+// (a k) mod n for a, k < n < 2^20 without 64-bit integers (GLSL has none by default).
+SST_FUNC uint gi_mul_mod(uint a, uint k, uint n) {
+  uint high = (a * (k >> 8u)) % n;
+  return (high * 256u + a * (k & 255u)) % n;
+}
+
+SST_FUNC uint gi_gcd(uint a, uint b) {
+  while (b != 0u) {
+    uint t = a % b;
+    a = b;
+    b = t;
   }
-  uint empties = 0u;
-  for (uint t = 0u; t < nt; ++t) {
-    if (GI_MASK(mask_base + t) != kGiNoProbe) continue;
-    uvec2 tp = uvec2(t % GF.tiles_x, t / GF.tiles_x);
-    uint j = (tp.y / 2u) * GF.spawn_x + tp.x / 2u;
-    if (GI_SPAWN(j) != kGiNoProbe) {
-      uvec2 s = gi_unpack(GI_SPAWN(j));
-      if (s.x / 8u == tp.x && s.y / 8u == tp.y) continue;  // gets this frame's spawned probe
-    }
-    if (gi_sky(gi_pixel(GI_CTX cur, gi_pixel_index(GF, tp * 8u)))) continue;
-    GI_SPAWN(2u * ns + empties) = t;
-    ++empties;
-  }
-  HashRng rng = gi_rng(GF, GI10_STAGE_SPAWN, 0u);
-  gi_shuffle(GI_CTX ns, overrides, rng);
-  gi_shuffle(GI_CTX 2u * ns, empties, rng);
-  uint patched = 0u;
-  uint n = min(empties, overrides);
-  for (uint k = 0u; k < n; ++k) {
-    uint t = GI_SPAWN(2u * ns + k);
-    uvec2 tp = uvec2(t % GF.tiles_x, t / GF.tiles_x);
-    uvec2 seed = min(tp * 8u + GF.jitter8, uvec2(GF.width - 1u, GF.height - 1u));
-    if (gi_sky(gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)))) continue;
-    GI_SPAWN(GI_SPAWN(ns + k)) = gi_pack(seed);
-    ++patched;
-  }
-  GI_COUNTERS(GI10_COUNT_PROBES) = spawned;
-  GI_COUNTERS(GI10_COUNT_PATCHED) = patched;
-  GI_COUNTERS(GI10_COUNT_EMPTY) = empties;
+  return a;
+}
+
+// Pair k of min(#empty, #override): the shorter list is taken in order, the longer one through
+// k -> (a k + c) mod n with a coprime to n, both drawn from the frame's random numbers.
+SST_FUNC void gi_stage_patch(GI_CTX_PARAM uint k) {
+  uint ns = gi_spawns(GF);
+  uint nlen = gi_spawn_block_base(GF) + gi_override_blocks(GF) + gi_empty_blocks(GF);
+  uint no = GI_SPAWN(nlen);
+  uint ne = GI_SPAWN(nlen + 1u);
+  if (k >= min(no, ne)) return;
+  uint n = max(no, ne);
+  HashRng rng = gi_rng(GF, GI10_STAGE_PATCH, 0u);
+  uint a = 1u + hash_rng_next_bits(rng) % n;
+  uint c = hash_rng_next_bits(rng) % n;
+  for (uint i = 0u; i < 32u && gi_gcd(a, n) != 1u; ++i) a = a % n + 1u;
+  if (gi_gcd(a, n) != 1u) a = 1u;
+  uint m = (gi_mul_mod(a, k, n) + c) % n;
+  uint e = ne <= no ? k : m;
+  uint o = ne <= no ? m : k;
+  uint t = GI_SPAWN(3u * ns + gi_tiles(GF) + e);
+  uvec2 tp = uvec2(t % GF.tiles_x, t / GF.tiles_x);
+  uvec2 seed = min(tp * 8u + GF.jitter8, uvec2(GF.width - 1u, GF.height - 1u));
+  if (gi_sky(gi_pixel(GI_CTX gi_parity(GF), gi_pixel_index(GF, seed)))) return;
+  GI_SPAWN(GI_SPAWN(2u * ns + o)) = gi_pack(seed);
+  GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_PATCHED), 1u);
 }
 
 // ---- S6: reconstruct a new probe from its reprojected neighbours and choose its ray directions ----
@@ -933,6 +1007,11 @@ SST_FUNC void gi10_stage(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PA
   else if (stage == GI10_STAGE_PURGE) gi_stage_purge(GI_CTX index);
   else if (stage == GI10_STAGE_REPROJECT) gi_stage_reproject(GI_CTX index);
   else if (stage == GI10_STAGE_SPAWN) gi_stage_spawn(GI_CTX index);
+  else if (stage == GI10_STAGE_EMPTY_TILES) gi_stage_empty_tiles(GI_CTX index);
+  else if (stage == GI10_STAGE_LIST_COUNT) gi_stage_list_count(GI_CTX index);
+  else if (stage == GI10_STAGE_LIST_SCAN) gi_stage_list_scan(GI_CTX index);
+  else if (stage == GI10_STAGE_LIST_COMPACT) gi_stage_list_compact(GI_CTX index);
+  else if (stage == GI10_STAGE_PATCH) gi_stage_patch(GI_CTX index);
   else if (stage == GI10_STAGE_SAMPLE) gi_stage_sample(GI_CTX index);
   else if (stage == GI10_STAGE_TRACE) gi_stage_trace(SCENE_CTX RAY_CTX GI_CTX index);
   else if (stage == GI10_STAGE_SHADE) gi_stage_shade(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index);

@@ -111,11 +111,7 @@ struct Gi10Pixel {
   vec3 position;
   float depth;       // linear view depth (along the camera's forward axis); 0 for a miss
   vec3 ng;           // geometric normal toward the camera; 0 for a miss
-  float pad0;
-  vec3 ns;           // shading normal toward the camera
-  float pad1;
-  vec3 emission;     // radiance emitted toward the camera
-  float pad2;
+  uint ns;           // shading normal toward the camera, octahedral (gi_oct_encode)
 };
 
 // Flags of Gi10Ray::flags.

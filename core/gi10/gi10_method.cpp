@@ -27,7 +27,9 @@ struct Gi10Buffers {
   uint32_t* hash = nullptr;
   vec4* values = nullptr;
   uint32_t* accum = nullptr;
+  vec4* emission = nullptr;
   vec4* denoise = nullptr;
+  vec4* aux = nullptr;
   vec4* feedback = nullptr;
   uint32_t* counters = nullptr;
   vec4* output = nullptr;
@@ -52,7 +54,9 @@ inline uint32_t gi_atomic_cas(uint32_t& target, uint32_t compare, uint32_t value
 #define GI_HASH(i) gi.hash[i]
 #define GI_VALUES(i) gi.values[i]
 #define GI_ACCUM(i) gi.accum[i]
+#define GI_EMISSION(i) gi.emission[i]
 #define GI_DENOISE(i) gi.denoise[i]
+#define GI_AUX(i) gi.aux[i]
 #define GI_FEEDBACK(i) gi.feedback[i]
 #define GI_COUNTERS(i) gi.counters[i]
 #define GI_OUTPUT(i) gi.output[i]
@@ -63,7 +67,7 @@ inline uint32_t gi_atomic_cas(uint32_t& target, uint32_t compare, uint32_t value
 namespace sst {
 
 static_assert(sizeof(glsl::Gi10Frame) == 304, "Gi10Frame must match its std430 layout");
-static_assert(sizeof(glsl::Gi10Pixel) == 64, "Gi10Pixel must match its std430 layout");
+static_assert(sizeof(glsl::Gi10Pixel) == 32, "Gi10Pixel must match its std430 layout");
 static_assert(sizeof(glsl::Gi10Ray) == 112, "Gi10Ray must match its std430 layout");
 
 namespace {
@@ -111,14 +115,29 @@ class Gi10Cpu final : public Gi10Executor {
     rays_.assign(ns * 64, glsl::Gi10Ray{});
     hash_.assign(2 * t, 0u);
     values_.assign(t * kGiCellsPerTile, vec4(0.0f));
-    accum_.assign(t * 64 * 8, 0u);
-    denoise_.assign(6 * px, vec4(0.0f));
+    accum_.assign(t * 64 * kGiAccumWords, 0u);
+    emission_.assign(px, vec4(0.0f));
+    denoise_.assign(3 * px, vec4(0.0f));
+    aux_.assign(3 * px, vec4(0.0f));
     feedback_.assign(px, vec4(0.0f));
     counters_.assign(GI10_COUNTERS, 0u);
     output_.assign(px, vec4(0.0f));
-    b_ = {&frame_,         pixels_.data(), mask_.data(),     radiance_.data(), sh_.data(),
-          spawn_.data(),   rays_.data(),   hash_.data(),     values_.data(),   accum_.data(),
-          denoise_.data(), feedback_.data(), counters_.data(), output_.data()};
+    b_.frame = &frame_;
+    b_.pixels = pixels_.data();
+    b_.mask = mask_.data();
+    b_.radiance = radiance_.data();
+    b_.sh = sh_.data();
+    b_.spawn = spawn_.data();
+    b_.rays = rays_.data();
+    b_.hash = hash_.data();
+    b_.values = values_.data();
+    b_.accum = accum_.data();
+    b_.emission = emission_.data();
+    b_.denoise = denoise_.data();
+    b_.aux = aux_.data();
+    b_.feedback = feedback_.data();
+    b_.counters = counters_.data();
+    b_.output = output_.data();
   }
   void begin_frame(const RenderContext& context, const glsl::Gi10Frame& frame) override {
     context_ = &context;
@@ -161,7 +180,7 @@ class Gi10Cpu final : public Gi10Executor {
   glsl::Gi10Frame frame_{};
   std::vector<glsl::Gi10Pixel> pixels_;
   std::vector<uint32_t> mask_, spawn_, hash_, accum_, counters_;
-  std::vector<vec4> radiance_, sh_, values_, denoise_, feedback_, output_;
+  std::vector<vec4> radiance_, sh_, values_, emission_, denoise_, aux_, feedback_, output_;
   std::vector<glsl::Gi10Ray> rays_;
   Gi10Buffers b_;
 };

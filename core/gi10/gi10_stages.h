@@ -7,15 +7,17 @@
 // Hooks, besides the scene's, lights' and rays' (core/pt/trace_path.h lists those):
 //   GI_CTX_PARAM / GI_CTX   the buffers' context parameter and argument (empty in GLSL)
 //   GF                      the frame's Gi10Frame
-//   GI_PIXELS(i) ... GI_COUNTERS(i)   the buffers of gi10_layout.h as lvalues
+//   GI_PIXELS(i) ... GI_OUTPUT(i)     the buffers listed below, as lvalues
 //   GI_ATOMIC_ADD(lvalue, v), GI_ATOMIC_CAS(lvalue, compare, v)   return the old value
 //
 // Buffer layout (element type, count): PIXELS Gi10Pixel 2 W H (this frame's and the previous, by
-// frame parity); MASK uint 2 M (M: all mips of the tile grid); RADIANCE vec4 2 Nt 64 (rgb, hit
-// distance); SH vec4 2 Nt 9; SPAWN uint 2 Ns + Nt (spawn list, override and empty-tile scratch);
-// RAYS Gi10Ray Ns 64; HASH uint 2 T (checksums, then last-touch frames); VALUES vec4 T 85;
-// ACCUM uint T 64 8; DENOISE vec4 6 W H (irradiance + hint, history x2, aux x2, filter scratch);
-// FEEDBACK vec4 W H; COUNTERS uint GI10_COUNTERS; OUTPUT vec4 W H (E_out).
+// frame parity); EMISSION vec4 W H (emission seen at the pixel centres); MASK uint 2 M (M: all
+// mips of the tile grid); RADIANCE vec4 2 Nt 64 (rgb, hit distance); SH vec4 2 Nt 9; SPAWN uint
+// gi_spawn_words (spawn list and the patch's lists); RAYS Gi10Ray Ns 64; HASH uint 2 T (checksums,
+// then last-touch frames); VALUES vec4 T 85; ACCUM uint T 64 kGiAccumWords; DENOISE vec4 3 W H
+// (irradiance + hint, history x2); AUX vec4 3 W H (colour delta and blur masks x2, filter
+// scratch); FEEDBACK vec4 W H; COUNTERS uint GI10_COUNTERS; OUTPUT vec4 W H (E_out). No buffer
+// exceeds lavapipe's 128 MiB at 1920 x 1080 with the default cache.
 #ifndef SST_CORE_GI10_GI10_STAGES_H
 #define SST_CORE_GI10_GI10_STAGES_H
 #include "core/accel/bvh_layout.h"
@@ -45,6 +47,7 @@ SST_FUNC uint gi_hash_tiles(SST_IN(Gi10Frame) f) { return f.num_buckets * f.tile
 SST_FUNC uint gi_pack(uvec2 p) { return (p.x << 16u) | p.y; }
 SST_FUNC uvec2 gi_unpack(uint v) { return uvec2(v >> 16u, v & 0xFFFFu); }
 SST_FUNC uint gi_pixel_index(SST_IN(Gi10Frame) f, uvec2 p) { return p.y * f.width + p.x; }
+SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 
 // Mip `level` of the probe mask: its size and first element (within one of the two copies).
 SST_FUNC uvec2 gi_mask_size(SST_IN(Gi10Frame) f, uint level) {
@@ -85,8 +88,39 @@ SST_FUNC HashRng gi_rng(SST_IN(Gi10Frame) f, uint stage, uint element) {
   return hash_rng(f.seed, element, f.frame, 0x61100000u + stage);
 }
 
+// A unit vector in 32 bits (octahedral map, 16 bits per axis), the same bits on both backends.
+SST_FUNC uint gi_oct_encode(vec3 n) {
+  float l1 = abs(n.x) + abs(n.y) + abs(n.z);
+  if (!(l1 > 0.0f)) return 0x7FFF7FFFu;
+  float u = n.x / l1;
+  float v = n.y / l1;
+  if (n.z < 0.0f) {
+    float fu = (1.0f - abs(v)) * (u >= 0.0f ? 1.0f : -1.0f);
+    float fv = (1.0f - abs(u)) * (v >= 0.0f ? 1.0f : -1.0f);
+    u = fu;
+    v = fv;
+  }
+  uint qu = uint(clamp(floor((u * 0.5f + 0.5f) * 65535.0f + 0.5f), 0.0f, 65535.0f));
+  uint qv = uint(clamp(floor((v * 0.5f + 0.5f) * 65535.0f + 0.5f), 0.0f, 65535.0f));
+  return (qu << 16u) | qv;
+}
+
+SST_FUNC vec3 gi_oct_decode(uint e) {
+  float u = float(e >> 16u) * (2.0f / 65535.0f) - 1.0f;
+  float v = float(e & 0xFFFFu) * (2.0f / 65535.0f) - 1.0f;
+  float z = 1.0f - abs(u) - abs(v);
+  if (z < 0.0f) {
+    float fu = (1.0f - abs(v)) * (u >= 0.0f ? 1.0f : -1.0f);
+    float fv = (1.0f - abs(u)) * (v >= 0.0f ? 1.0f : -1.0f);
+    u = fu;
+    v = fv;
+  }
+  return normalize3(vec3(u, v, z));
+}
+
 SST_FUNC Gi10Pixel gi_pixel(GI_CTX_PARAM uint copy, uint index) { return GI_PIXELS(copy * gi_pixels(GF) + index); }
 SST_FUNC bool gi_sky(SST_IN(Gi10Pixel) p) { return !(p.depth > 0.0f); }
+SST_FUNC vec3 gi_ns(SST_IN(Gi10Pixel) p) { return gi_oct_decode(p.ns); }
 
 // ---- G-buffer of pixel centres -------------------------------------------------------------------
 SST_FUNC void gi_stage_gbuffer(SCENE_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint index) {
@@ -97,21 +131,19 @@ SST_FUNC void gi_stage_gbuffer(SCENE_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint i
   p.position = vec3(0.0f);
   p.depth = 0.0f;
   p.ng = vec3(0.0f);
-  p.pad0 = 0.0f;
-  p.ns = vec3(0.0f);
-  p.pad1 = 0.0f;
-  p.emission = vec3(0.0f);
-  p.pad2 = 0.0f;
+  p.ns = 0u;
+  vec3 emission = vec3(0.0f);
   BvhHit h = RAY_INTERSECT(GF.view.eye, dir);
   if (h.triangle < BVH_STACK_OVERFLOW) {
     Surface s = make_surface(SCENE_CTX h.triangle, vec2(h.u, h.v), dir);
     p.position = s.p;
     p.depth = max(dot3(s.p - GF.view.eye, GF.view.forward), 1e-30f);
     p.ng = s.ng;
-    p.ns = s.ns;
-    p.emission = s.emission;
+    p.ns = gi_oct_encode(s.ns);
+    emission = s.emission;
   }
   GI_PIXELS(gi_parity(GF) * gi_pixels(GF) + index) = p;
+  GI_EMISSION(index) = gi_vec4(emission, 0.0f);
 }
 
 // ---- S1: free the hash tiles untouched for tile_decay frames ---------------------------------------
@@ -528,7 +560,7 @@ SST_FUNC void gi_stage_trace(SCENE_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint ind
 // where the point was on screen (temporal feedback), else one light sample with one shadow ray ----
 SST_FUNC void gi_accumulate(GI_CTX_PARAM uint cell, vec3 v) {
   uint slot = cell / kGiCellsPerTile;
-  uint base = (slot * 64u + (cell - slot * kGiCellsPerTile)) * 8u;
+  uint base = (slot * 64u + (cell - slot * kGiCellsPerTile)) * kGiAccumWords;
   for (uint ch = 0u; ch < 3u; ++ch) {
     uvec2 q = gi_fixed_split(ch == 0u ? v.x : (ch == 1u ? v.y : v.z));
     uint old = GI_ATOMIC_ADD(GI_ACCUM(base + 2u * ch), q.x);
@@ -615,12 +647,12 @@ SST_FUNC void gi_stage_update(GI_CTX_PARAM uint slot) {
   if (GI_HASH(slot) == 0u || GI_HASH(gi_hash_tiles(GF) + slot) != GF.frame) return;
   uint values = slot * kGiCellsPerTile;
   for (uint c = 0u; c < 64u; ++c) {
-    uint a = (slot * 64u + c) * 8u;
+    uint a = (slot * 64u + c) * kGiAccumWords;
     vec3 sum = vec3(gi_fixed_value(GI_ACCUM(a), GI_ACCUM(a + 1u)), gi_fixed_value(GI_ACCUM(a + 2u), GI_ACCUM(a + 3u)),
                     gi_fixed_value(GI_ACCUM(a + 4u), GI_ACCUM(a + 5u)));
     float k = float(GI_ACCUM(a + 6u));
     GI_VALUES(values + c) = gi_cell_update(GI_VALUES(values + c), sum, k, GF.max_samples);
-    for (uint w = 0u; w < 8u; ++w) GI_ACCUM(a + w) = 0u;
+    for (uint w = 0u; w < kGiAccumWords; ++w) GI_ACCUM(a + w) = 0u;
   }
   // Mip m's cell is the sum (of mean x count and of count) of its four children at mip m - 1.
   for (uint m = 1u; m < 4u; ++m) {
@@ -830,7 +862,7 @@ SST_FUNC void gi_stage_interpolate(GI_CTX_PARAM uint index) {
         float wi = wsum > 0.0f ? w[i] / wsum : 1.0f / found;
         if (wi > 0.0f) {
           uvec2 s = gi_unpack(q[i]);
-          e += wi * gi_probe_irradiance(GI_CTX (s.y / 8u) * GF.tiles_x + s.x / 8u, px.ns);
+          e += wi * gi_probe_irradiance(GI_CTX (s.y / 8u) * GF.tiles_x + s.x / 8u, gi_ns(px));
         }
       }
       out_value = gi_vec4(e, hint);
@@ -856,7 +888,7 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
   uvec2 p = uvec2(index % GF.width, index / GF.width);
   if (gi_sky(px)) {
     GI_DENOISE((1u + cur) * n + index) = vec4(0.0f);
-    GI_DENOISE((3u + cur) * n + index) = vec4(0.0f, -1.0f, -1.0f, 0.0f);
+    GI_AUX(cur * n + index) = vec4(0.0f, -1.0f, -1.0f, 0.0f);
     return;
   }
   vec2 q;
@@ -864,7 +896,7 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
   if (GF.has_history != 0u && project_to_pixel(GF.previous_view, px.position, q, distance) && q.x >= 0.0f &&
       q.y >= 0.0f && q.x < float(GF.width) && q.y < float(GF.height)) {
     vec3 v = normalize3(GF.view.eye - px.position);
-    float graze = 1.0f - max(dot3(v, px.ns), 0.0f);
+    float graze = 1.0f - max(dot3(v, gi_ns(px)), 0.0f);
     float graze2 = graze * graze;
     float cs = gi_cell_size(GF.view.eye, px.position, GF.k_probe) * (1.0f + 4.0f * graze2 * graze2 * graze2);
     vec4 hs = vec4(0.0f);
@@ -879,12 +911,12 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
         vec4 hp = GI_DENOISE((1u + prev) * n + si);
         if (hp.w < 1.0f) continue;
         Gi10Pixel pp = gi_pixel(GI_CTX prev, si);
-        if (gi_sky(pp) || !(length3(px.position - pp.position) < cs) || !(dot3(px.ns, pp.ns) > 0.95f)) continue;
+        if (gi_sky(pp) || !(length3(px.position - pp.position) < cs) || !(dot3(gi_ns(px), gi_ns(pp)) > 0.95f)) continue;
         float ddx = float(sx) + 0.5f - q.x;
         float ddy = float(sy) + 0.5f - q.y;
         float wt = gi_saturate(1.0f - sqrt(ddx * ddx + ddy * ddy) / 1.41421356f);
         hs += hp * wt;
-        ds += GI_DENOISE((3u + prev) * n + si).x * wt;
+        ds += GI_AUX(prev * n + si).x * wt;
         ws += wt;
       }
     }
@@ -914,14 +946,14 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
   float cap = max((4.0f + (GF.denoise_history * min(count, 8.0f) - 4.0f) * beta) * vign, 1.0f);
   if (count > cap) h = h * (cap / count);
   GI_DENOISE((1u + cur) * n + index) = h;
-  GI_DENOISE((3u + cur) * n + index) = vec4(delta, mask, mask, 0.0f);
+  GI_AUX(cur * n + index) = vec4(delta, mask, mask, 0.0f);
 }
 
 // Dilates the blur mask over 9x9 pixels with a linear falloff; counts the blur's work.
 SST_FUNC void gi_stage_blur_mask(GI_CTX_PARAM uint index) {
   uint cur = gi_parity(GF);
   uint n = gi_pixels(GF);
-  vec4 aux = GI_DENOISE((3u + cur) * n + index);
+  vec4 aux = GI_AUX(cur * n + index);
   if (aux.y < 0.0f) return;  // sky
   int px = int(index % GF.width);
   int py = int(index / GF.width);
@@ -933,13 +965,13 @@ SST_FUNC void gi_stage_blur_mask(GI_CTX_PARAM uint index) {
       int sx = px + dx;
       int sy = py + dy;
       if (sx < 0 || sy < 0 || sx >= int(GF.width) || sy >= int(GF.height)) continue;
-      float tap = GI_DENOISE((3u + cur) * n + uint(sy) * GF.width + uint(sx)).y;
+      float tap = GI_AUX(cur * n + uint(sy) * GF.width + uint(sx)).y;
       float falloff = gi_saturate(1.0f - sqrt(float(dx * dx + dy * dy)) / (4.0f * 1.41421356f));
       m = max(m, floor(tap * falloff + 0.5f));
     }
   }
   aux.z = m;
-  GI_DENOISE((3u + cur) * n + index) = aux;
+  GI_AUX(cur * n + index) = aux;
   uint r = uint(m);
   GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_BLUR_WORK), (2u * r + 1u) * (2u * r + 1u));
 }
@@ -950,10 +982,10 @@ SST_FUNC void gi_stage_blur_mask(GI_CTX_PARAM uint index) {
 SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
   uint cur = gi_parity(GF);
   uint n = gi_pixels(GF);
-  uint source = pass == 0u ? (1u + cur) * n : 5u * n;
-  uint target = pass == 0u ? 5u * n : (1u + cur) * n;
-  vec4 h = GI_DENOISE(source + index);
-  float m = GI_DENOISE((3u + cur) * n + index).z;
+  uint history = (1u + cur) * n;  // in DENOISE
+  uint scratch = 2u * n;          // in AUX
+  vec4 h = pass == 0u ? GI_DENOISE(history + index) : GI_AUX(scratch + index);
+  float m = GI_AUX(cur * n + index).z;
   Gi10Pixel px = gi_pixel(GI_CTX cur, index);
   int radius = 0;
   if (m > 0.0f) {
@@ -974,13 +1006,13 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
       int sy = pass == 0u ? y : y + r;
       if (sx < 0 || sy < 0 || sx >= int(GF.width) || sy >= int(GF.height)) continue;
       uint si = uint(sy) * GF.width + uint(sx);
-      vec4 hq = GI_DENOISE(source + si);
+      vec4 hq = pass == 0u ? GI_DENOISE(history + si) : GI_AUX(scratch + si);
       if (!(hq.w > 0.0f)) continue;
       Gi10Pixel pq = gi_pixel(GI_CTX cur, si);
       if (gi_sky(pq)) continue;
       float w = exp(-0.69314718f * k * abs(1.0f - px.depth / pq.depth));
       if (history) {
-        float c = max(dot3(px.ns, pq.ns), 0.0f);
+        float c = max(dot3(gi_ns(px), gi_ns(pq)), 0.0f);
         w *= (c * c) * (c * c);
       }
       sum += gi_history_mean(hq) * w;
@@ -988,14 +1020,18 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
     }
     result = gi_vec4(sum / wsum * max(abs(h.w), 1.0f), h.w);
   }
-  GI_DENOISE(target + index) = result;
-  if (pass == 1u) GI_OUTPUT(index) = gi_vec4(gi_history_mean(result), h.w);
+  if (pass == 0u) {
+    GI_AUX(scratch + index) = result;
+  } else {
+    GI_DENOISE(history + index) = result;
+    GI_OUTPUT(index) = gi_vec4(gi_history_mean(result), h.w);
+  }
 }
 
 // The radiance the next frame's feedback reads: this frame's image without the emission seen (the
 // direct pass and the caches both add it otherwise). The host has put the image in FEEDBACK.
 SST_FUNC void gi_stage_feedback_image(GI_CTX_PARAM uint index) {
-  vec3 c = gi_rgb(GI_FEEDBACK(index)) - gi_pixel(GI_CTX gi_parity(GF), index).emission;
+  vec3 c = gi_rgb(GI_FEEDBACK(index)) - gi_rgb(GI_EMISSION(index));
   GI_FEEDBACK(index) = gi_vec4(max3(c, vec3(0.0f)), 0.0f);
 }
 

@@ -47,6 +47,7 @@ using glm::vec4;
 #define GI10_STAGE_LIST_SCAN 21u
 #define GI10_STAGE_LIST_COMPACT 22u
 #define GI10_STAGE_PATCH 23u
+#define GI10_STAGES 24u
 
 // Counters (Gi10 counters buffer, uint each).
 #define GI10_COUNT_PROBES 0u          // spawned probes traced

@@ -172,7 +172,7 @@ class Gi10Cpu final : public Gi10Executor {
   FrameOutput direct(const RenderContext& context, StageTimer& timer) override {
     PathTracerParams p;
     p.max_bounces = 0;
-    return PathTracer(p).render(context, timer);
+    return PathTracer(p).render(context, timer);  // as every VPL method's direct pass
   }
 
  private:
@@ -287,7 +287,11 @@ FrameOutput Gi10Renderer::render(const RenderContext& context, Gi10Executor& exe
 
 FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor& executor, StageTimer& timer,
                                      bool warmup) {
-  FrameOutput out = executor.direct(context, timer);
+  StageTimer direct_timer;
+  FrameOutput out = executor.direct(context, direct_timer);
+  double direct_ms = 0.0;
+  for (const auto& [stage, ms] : direct_timer.stages()) direct_ms += ms;
+  timer.add("direct", direct_ms);
   glsl::Gi10Frame f{};
   f.view = view_params(context.camera, context.width, context.height, context.options.seed);
   f.previous_view = frame_ == 0 ? f.view : previous_view_;
@@ -326,6 +330,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   executor.clear_counters();
 
   std::map<std::string, double> buckets;
+  buckets["direct"] = direct_ms;
   auto run = [&](uint32_t stage, uint32_t pass, uint64_t count) {
     double ms = executor.run(stage, pass, uint32_t(count));
     timer.add(std::string("gi10_") + kStageNames[stage], ms);

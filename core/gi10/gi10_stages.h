@@ -81,6 +81,17 @@ SST_FUNC float gi_pow8(float x) {
   float x4 = x2 * x2;
   return x4 * x4;
 }
+// 2^x for x <= 0 from + and * only (the drivers' exp differs by ulps between backends, and the
+// denoiser's output feeds back into the next frames): 2^floor(x) from the exponent bits times a
+// degree-6 Taylor polynomial of 2^f, f in [0, 1) (relative error < 1e-5).
+SST_FUNC float gi_exp2_negative(float x) {
+  if (!(x > -126.0f)) return 0.0f;
+  float i = floor(x);
+  SST_PRECISE float t = (x - i) * 0.69314718f;
+  SST_PRECISE float p = 1.0f + t * (1.0f + t * (0.5f + t * (0.16666667f + t * (0.041666668f + t * (0.008333334f + t * 0.0013888889f)))));
+  return p * uintBitsToFloat(uint(int(i) + 127) << 23u);
+}
+
 SST_FUNC vec3 gi_scrub(vec3 c) { return is_finite3(c) ? max3(c, vec3(0.0f)) : vec3(0.0f); }
 
 // A random stream of GI-1.0: one per (stage, element) and frame.
@@ -469,7 +480,10 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
         if (cdf[k] <= target) texel = k;
       while (texel > 0u && !(cdf[texel + 1u] > cdf[texel])) --texel;  // never a zero-weight texel
     }
-    vec2 uv = vec2(hash_rng_next(rng), hash_rng_next(rng));
+    // One statement per draw: C++ leaves the order of a constructor's arguments open.
+    float u1 = hash_rng_next(rng);
+    float u2 = hash_rng_next(rng);
+    vec2 uv = vec2(u1, u2);
     Gi10Ray r;
     r.direction = normalize3(gi_to_world(fx, gi_texel_local_direction(texel, uv)));
     r.recon_distance = a.count[c] > 0.0f ? a.sum[c].w / a.count[c] : -1.0f;
@@ -604,7 +618,9 @@ SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CT
   // sst's direct-light estimator at x2 (the lights picked as by every method's direct pass): a
   // Lambertian reflection toward the probe, unbiased, with no MIS (no BRDF sample to weigh).
   HashRng rng = gi_rng(GF, GI10_STAGE_SHADE, index);
-  vec2 u = vec2(hash_rng_next(rng), hash_rng_next(rng));
+  float u1 = hash_rng_next(rng);
+  float u2 = hash_rng_next(rng);
+  vec2 u = vec2(u1, u2);
   LightSample ls;
   if (!light_sample(SCENE_CTX LIGHT_CTX r.x2, u, ls)) {
     GI_RAYS(index) = r;
@@ -982,9 +998,9 @@ SST_FUNC void gi_stage_blur_mask(GI_CTX_PARAM uint index) {
 SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
   uint cur = gi_parity(GF);
   uint n = gi_pixels(GF);
-  uint history = (1u + cur) * n;  // in DENOISE
+  uint history_base = (1u + cur) * n;  // in DENOISE
   uint scratch = 2u * n;          // in AUX
-  vec4 h = pass == 0u ? GI_DENOISE(history + index) : GI_AUX(scratch + index);
+  vec4 h = pass == 0u ? GI_DENOISE(history_base + index) : GI_AUX(scratch + index);
   float m = GI_AUX(cur * n + index).z;
   Gi10Pixel px = gi_pixel(GI_CTX cur, index);
   int radius = 0;
@@ -1006,11 +1022,11 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
       int sy = pass == 0u ? y : y + r;
       if (sx < 0 || sy < 0 || sx >= int(GF.width) || sy >= int(GF.height)) continue;
       uint si = uint(sy) * GF.width + uint(sx);
-      vec4 hq = pass == 0u ? GI_DENOISE(history + si) : GI_AUX(scratch + si);
+      vec4 hq = pass == 0u ? GI_DENOISE(history_base + si) : GI_AUX(scratch + si);
       if (!(hq.w > 0.0f)) continue;
       Gi10Pixel pq = gi_pixel(GI_CTX cur, si);
       if (gi_sky(pq)) continue;
-      float w = exp(-0.69314718f * k * abs(1.0f - px.depth / pq.depth));
+      float w = gi_exp2_negative(-k * abs(1.0f - px.depth / pq.depth));
       if (history) {
         float c = max(dot3(gi_ns(px), gi_ns(pq)), 0.0f);
         w *= (c * c) * (c * c);
@@ -1023,7 +1039,7 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
   if (pass == 0u) {
     GI_AUX(scratch + index) = result;
   } else {
-    GI_DENOISE(history + index) = result;
+    GI_DENOISE(history_base + index) = result;
     GI_OUTPUT(index) = gi_vec4(gi_history_mean(result), h.w);
   }
 }

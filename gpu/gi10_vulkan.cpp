@@ -30,6 +30,15 @@ FrameOutput VulkanGi10::render(const RenderContext& context, const GpuRenderCont
   return method_.renderer().render(context, *this, timer);
 }
 
+void VulkanGi10::release_device() {
+  if (gpu_) method_.renderer().restart();
+  pipelines_.clear();
+  direct_pipeline_.reset();
+  buffers_.clear();
+  bound_.clear();
+  gpu_ = nullptr;
+}
+
 void VulkanGi10::allocate(const Gi10Sizes& s) {
   const VulkanContext& vk = gpu_->vulkan();
   sizes_ = s;

@@ -16,6 +16,8 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
  public:
   explicit VulkanGi10(Gi10Method& method) : method_(method) {}
   FrameOutput render(const RenderContext& context, const GpuRenderContext& gpu, StageTimer& timer) override;
+  // The caches live on the device: a new device context starts the frames over (with warm-up).
+  void release_device() override;
 
  private:
   void allocate(const Gi10Sizes& sizes) override;

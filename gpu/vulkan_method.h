@@ -20,6 +20,9 @@ class VulkanMethod {
   // `context` holds the frame's CPU-side inputs (scene, accel, lights, camera, options), `gpu` the
   // device and the scene, BVH and lights uploaded to it.
   virtual FrameOutput render(const RenderContext& context, const GpuRenderContext& gpu, StageTimer& timer) = 0;
+  // Called before the device context it rendered with is destroyed (the pipeline rebuilds it when
+  // lights or geometry move): whatever the method keeps on that device must go now.
+  virtual void release_device() {}
 };
 
 // The Vulkan side of `method`, which it refers to and which must outlive it. Throws sst::Error

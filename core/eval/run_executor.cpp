@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/eval/sequence_checkpoint.h"
+#include "core/pipeline/method_registry.h"
 #include "core/image/video.h"
 #include "core/metrics/error_map.h"
 #include "core/metrics/metrics.h"
@@ -172,6 +173,9 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
     record["time_budget_ms"] = run.time_budget_ms;
   }
   if (resumed) record["resumed_at_frame"] = progress.state.next;
+  const bool resumable = find_method(options.method).resumable;
+  if (!resumable)
+    record["checkpoint"] = "none: method " + options.method + " keeps frame-to-frame state of its own; an interrupted run starts over";
   const int measured = options.frames;
   options.frames = run.warmup_frames + measured;
   PoseRestorer restore(scene);
@@ -212,7 +216,7 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
           tally.reference = reference.id;
           tally.reference_description = reference.description;
         }
-        if (position + 1 < options.frames) save_checkpoint(run_dir, run.spec_hash, progress);
+        if (resumable && position + 1 < options.frames) save_checkpoint(run_dir, run.spec_hash, progress);
         last = std::move(f.result);
       },
       &progress.state);

@@ -222,7 +222,7 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0)) throw Error(std::string("gi10 parameter ") + name + " must be > 0 (got " + std::to_string(v) + ")");
   };
-  if (p.warmup_frames < 0 || p.warmup_frames > 100000) throw Error("gi10 parameter warmup_frames must be in 0..100000");
+  if (p.cache_warmup_frames < 0 || p.cache_warmup_frames > 100000) throw Error("gi10 parameter cache_warmup_frames must be in 0..100000");
   positive("hash_cell_px", p.hash_cell_px);
   positive("min_cell_ratio", p.min_cell_ratio);
   if (p.hash_buckets_log2 < 1 || p.hash_buckets_log2 > 16) throw Error("gi10 parameter hash_buckets_log2 must be in 1..16");
@@ -275,7 +275,7 @@ FrameOutput Gi10Renderer::render(const RenderContext& context, Gi10Executor& exe
     // Warm-up: the caches fill over frames, at the first view, with fresh random numbers each frame.
     StageTimer discard;
     RenderOptions options = context.options;
-    for (int i = 0; i < params_.warmup_frames; ++i) {
+    for (int i = 0; i < params_.cache_warmup_frames; ++i) {
       options.seed = context.options.seed ^ (0x9E3779B9u * uint32_t(i + 1));
       RenderContext c{context.scene, context.accel,  context.lights, context.camera, options,
                       context.width, context.height, true,           0};
@@ -466,11 +466,13 @@ FrameOutput Gi10Method::render(const RenderContext& context, StageTimer& timer) 
 nlohmann::json Gi10Method::params() const { return params_to_json(renderer_.params()); }
 
 MethodInfo gi10_method_info() {
-  return method_info<Gi10Params>(
+  MethodInfo info = method_info<Gi10Params>(
       "gi10",
       "GI-1.0 (Boisse et al. 2022): screen probes at 1/4 ray per pixel over a world-space hash-grid radiance cache, "
       "reprojected, filtered and denoised over frames (warm-up frames first), plus sst's direct pass",
       [](const Gi10Params& p) -> std::unique_ptr<Method> { return std::make_unique<Gi10Method>(p); });
+  info.resumable = false;  // its probes and cache live in the method, not in SequenceState
+  return info;
 }
 
 }  // namespace sst

@@ -57,6 +57,8 @@ class Gi10Renderer {
   // Frame `context.frame` of a sequence; frame 0 (or a new size) starts over with warm-up frames.
   FrameOutput render(const RenderContext& context, Gi10Executor& executor, StageTimer& timer);
   const Gi10Params& params() const { return params_; }
+  // The next frame starts over with warm-up, as frame 0 does (the executor lost its buffers).
+  void restart() { started_ = false; }
 
  private:
   FrameOutput render_one(const RenderContext& context, Gi10Executor& executor, StageTimer& timer, bool warmup);

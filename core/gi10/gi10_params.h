@@ -17,7 +17,7 @@ struct Gi10Params {
   std::string sh_weight = "auto";
   std::string blur_mask = "auto";
   std::string cell_base = "auto";
-  int warmup_frames = 64;
+  int cache_warmup_frames = 64;
   float hash_cell_px = 32.0f;
   int cell_px_height = 1080;
   float min_cell_ratio = 0.003f;
@@ -54,7 +54,7 @@ struct Gi10Params {
     v("cell_base", cell_base, "auto|scene|capsaicin: cache cells are 2^k times 2^(floor(log2 D)-16) with D the "
       "diagonal of the points visible at frame 0 and at least min_cell_ratio D (scene), or 2^-10 units and at "
       "least 0.1 units (capsaicin)");
-    v("warmup_frames", warmup_frames,
+    v("cache_warmup_frames", cache_warmup_frames,
       "frames rendered at the first view before frame 0 of a render or sequence (untimed, discarded): the caches "
       "fill over frames");
     v("hash_cell_px", hash_cell_px, "projected size of a cache cell in pixels at an image cell_px_height high "

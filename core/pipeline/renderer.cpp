@@ -68,6 +68,7 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   if (options_.backend == "vulkan") {
     // The method's Vulkan side renders with both the CPU structures above (VPL methods build some
     // trees and their cuts on the CPU) and the scene uploaded to the device.
+    if (vulkan_method_) vulkan_method_->release_device();
     gpu_.reset();
     gpu_ = timer.time("gpu_setup", [&] {
       return std::make_unique<gpu::GpuRenderContext>(options_.device, scene, *lights_, *accel_->flat_bvh());

@@ -53,6 +53,9 @@ struct MethodInfo {
   std::vector<ParamInfo> params;
   // Builds the method from its parameters; unknown keys are an error naming the key.
   std::function<std::unique_ptr<Method>(const nlohmann::json& params)> create;
+  // Whether an interrupted sequence can continue from the pipeline's SequenceState alone; false
+  // for a method that carries state of its own from frame to frame (gi10's caches).
+  bool resumable = true;
 };
 
 // The MethodInfo of a method whose parameters P (with visit()) are read from JSON and handed to

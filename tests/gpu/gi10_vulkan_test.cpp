@@ -39,7 +39,7 @@ double mean(const Image& img) { return test::image_mean(img); }
 
 TEST(Gi10Vulkan, TheFirstFrameEqualsTheCpus) {
   if (std::string why = test::gpu_unavailable("gi10_0"); !why.empty()) GTEST_SKIP() << why;
-  nlohmann::json p = {{"warmup_frames", 0}};
+  nlohmann::json p = {{"cache_warmup_frames", 0}};
   RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
   double raw = test::relative_rmse(layer(gpu, "gi10_irradiance_raw"), layer(cpu, "gi10_irradiance_raw"));
   double color = test::relative_rmse(gpu.frame.color, cpu.frame.color);
@@ -52,7 +52,7 @@ TEST(Gi10Vulkan, TheFirstFrameEqualsTheCpus) {
 
 TEST(Gi10Vulkan, AfterWarmUpAgreesWithTheCpuInDistribution) {
   if (std::string why = test::gpu_unavailable("gi10_0"); !why.empty()) GTEST_SKIP() << why;
-  nlohmann::json p = {{"warmup_frames", 24}};
+  nlohmann::json p = {{"cache_warmup_frames", 24}};
   RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
   const Image &g = layer(gpu, "gi10_irradiance"), &c = layer(cpu, "gi10_irradiance");
   double rel = test::relative_rmse(g, c);

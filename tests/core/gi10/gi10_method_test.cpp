@@ -42,7 +42,7 @@ TEST(Gi10Method, TheLitSphereGetsTheSHIrradianceOfItsOneBounceRadiance) {
   // 1.02104 pi L1 = 1.02104 rho I / R^2 at every pixel, without noise (GI1.md §9.2 E1; the tilt
   // between a pixel and its probes is < 2 degrees at 256 x 256, < 0.05% of E).
   const float rho = 0.5f, radius = 2.0f, intensity = 8.0f;
-  RenderResult r = render_gi10(lit_sphere(rho, radius, intensity), {{"feedback", false}, {"warmup_frames", 16}}, 256, 256);
+  RenderResult r = render_gi10(lit_sphere(rho, radius, intensity), {{"feedback", false}, {"cache_warmup_frames", 16}}, 256, 256);
   const Image& e = layer(r, "gi10_irradiance");
   double expected = 1.02104 * rho * intensity / (radius * radius);
   double lo = 1e30, hi = 0.0;
@@ -62,7 +62,7 @@ TEST(Gi10Method, CapsaicinsSHWeightScalesTheIrradianceByFourOverPi) {
   // 1/8 instead of 2 pi / 64 per texel (GI1.md B3): everything downstream of the projection is
   // linear in it, or scale-free (the denoiser's luminance ratios), so every pixel scales by 4/pi.
   Scene scene = lit_sphere(0.5f, 2.0f, 8.0f);
-  nlohmann::json p = {{"feedback", false}, {"warmup_frames", 8}};
+  nlohmann::json p = {{"feedback", false}, {"cache_warmup_frames", 8}};
   RenderResult fair = render_gi10(scene, p, 64, 64);
   p["sh_weight"] = "capsaicin";
   RenderResult caps = render_gi10(scene, p, 64, 64);
@@ -75,7 +75,7 @@ TEST(Gi10Method, CapsaicinsSHWeightScalesTheIrradianceByFourOverPi) {
 
 TEST(Gi10Method, GivesTheSameBitsWithOneThreadAndTwo) {
   Scene scene = load_default_scene();
-  nlohmann::json p = {{"warmup_frames", 6}};
+  nlohmann::json p = {{"cache_warmup_frames", 6}};
   RenderResult one = render_gi10(scene, p, 96, 72, 1);
   RenderResult two = render_gi10(scene, p, 96, 72, 2);
   EXPECT_EQ(one.frame.color.data, two.frame.color.data);
@@ -88,7 +88,7 @@ TEST(Gi10Method, FeedbackAddsTheLightOfFurtherBounces) {
   // (measured: 1.64x).
   Scene scene = load_default_scene();
   auto mean_indirect = [&](bool feedback) {
-    RenderResult r = render_gi10(scene, {{"feedback", feedback}, {"warmup_frames", 32}}, 64, 48);
+    RenderResult r = render_gi10(scene, {{"feedback", feedback}, {"cache_warmup_frames", 32}}, 64, 48);
     double s = 0.0;
     for (float v : r.frame.indirect.data) s += v;
     return s / double(r.frame.indirect.data.size());

@@ -15,12 +15,13 @@ using glm::vec4;
 // Flags of Gi10Frame::flags: the switches in which the presets differ (gi10_params.h).
 #define GI10_FEEDBACK 1u            // previous frame's image as radiance of on-screen cache points
 #define GI10_PROBE_EMISSION 2u      // probe rays that hit an emitter return its emission and stop
-#define GI10_BACKUP_CAPSAICIN 4u    // empty texels: Capsaicin's mean / #empty instead of the mean
+#define GI10_BACKUP_MEAN 4u         // empty texels: the mean of the reached texels, not spread over them
 #define GI10_SHORT_RAY_BIT 8u       // the short-ray bit in the cache key
 #define GI10_BYPASS 16u             // probe rays shorter than a cell keep their own shadow-ray sample
 #define GI10_BLUR_MASK_CAPSAICIN 32u  // the blur-mask dilation skips its centre row and column (B7)
 #define GI10_PROBE_FILTER 64u       // filter probes across neighbours (S17)
 #define GI10_DENOISE 128u           // GI-1.0's temporal denoiser (S20); else E_out = interpolated E
+#define GI10_GUIDING 256u           // probe rays guided by the reconstructed radiance; else one per texel
 
 // Stage numbers of the one GPU entry point (gpu/shaders/gi10.comp), in execution order.
 #define GI10_STAGE_GBUFFER 0u

@@ -206,8 +206,7 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   Gi10Resolved r;
   if (p.feedback) r.flags |= GI10_FEEDBACK;
   if (pick("probe_emission", p.probe_emission, {"auto", "on", "off"}, "off", "on") == "on") r.flags |= GI10_PROBE_EMISSION;
-  if (pick("backup", p.backup, {"auto", "mean", "capsaicin"}, "mean", "capsaicin") == "capsaicin")
-    r.flags |= GI10_BACKUP_CAPSAICIN;
+  if (pick("backup", p.backup, {"auto", "spread", "mean"}, "spread", "spread") == "mean") r.flags |= GI10_BACKUP_MEAN;
   r.sh_weight = pick("sh_weight", p.sh_weight, {"auto", "solid_angle", "capsaicin"}, "solid_angle", "capsaicin") ==
                         "capsaicin"
                     ? 0.125f
@@ -218,6 +217,7 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   if (p.short_ray_bit) r.flags |= GI10_SHORT_RAY_BIT;
   if (p.bypass) r.flags |= GI10_BYPASS;
   if (p.probe_filter) r.flags |= GI10_PROBE_FILTER;
+  if (p.guiding) r.flags |= GI10_GUIDING;
   if (p.irradiance_denoiser) r.flags |= GI10_DENOISE;
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0)) throw Error(std::string("gi10 parameter ") + name + " must be > 0 (got " + std::to_string(v) + ")");

@@ -31,6 +31,7 @@ struct Gi10Params {
   float filter_angle = 0.02f;
   float interpolation_jitter = 16.0f;
   float denoise_history = 8.0f;
+  bool guiding = true;
   bool probe_filter = true;
   bool irradiance_denoiser = true;
   bool bypass = true;
@@ -40,14 +41,16 @@ struct Gi10Params {
   void visit(V&& v) {
     v("preset", preset,
       "fair: sst's direct pass for all direct light, probes see reflected light only, the corrected SH weight "
-      "2 pi/64, the mean as fill of empty texels, scene-relative cache cells; capsaicin: AMD Capsaicin v1.2's "
-      "behaviour (emitters seen by probes return their emission, SH weight 1/8, its fill, 1 mm / 0.1 cell base)");
+      "2 pi/64, scene-relative cache cells; capsaicin: AMD Capsaicin v1.2's "
+      "behaviour (emitters seen by probes return their emission, SH weight 1/8, 1 mm / 0.1 cell base, its blur mask)");
     v("feedback", feedback,
       "temporal radiance feedback: cache points visible last frame take last frame's image (light of every bounce) "
       "instead of a light sample (one bounce)");
     v("probe_emission", probe_emission, "auto|on|off: probe rays that hit an emitter return its emission (on "
       "double-counts direct light with sst's direct pass)");
-    v("backup", backup, "auto|mean|capsaicin: radiance of probe texels no ray reached (GI1.md B4)");
+    v("backup", backup, "auto|spread|mean: radiance of probe texels no ray reached: the reached texels' mean "
+      "spread over the empty ones (the paper, Capsaicin; both presets) or that mean (GI1.md B4's proposal, too "
+      "bright under guiding)");
     v("sh_weight", sh_weight, "auto|solid_angle|capsaicin: SH projection weight per texel, 2 pi/64 or 1/8 (B3)");
     v("blur_mask", blur_mask, "auto|full|capsaicin: the denoiser's blur-mask dilation; capsaicin skips the centre "
       "row and column (B7)");
@@ -73,6 +76,7 @@ struct Gi10Params {
     v("filter_angle", filter_angle, "probe filter's parallax threshold, in units of pi (cos(0.02 pi))");
     v("interpolation_jitter", interpolation_jitter, "pixels by which the probe search of a pixel is jittered");
     v("denoise_history", denoise_history, "the denoiser's history cap: lerp(4, this x min(n, 8), beta) x vignette");
+    v("guiding", guiding, "probe rays guided by the reprojected radiance (paper 2.1.3); off: one ray per texel");
     v("probe_filter", probe_filter, "filter traced probes across their neighbours (paper Algorithm 5)");
     v("irradiance_denoiser", irradiance_denoiser, "GI-1.0's own temporal denoiser; off: the interpolated irradiance");
     v("bypass", bypass, "probe rays shorter than a cell keep their own light sample instead of the cell's");

@@ -206,9 +206,13 @@ SST_FUNC void gi_sums_add_reprojected(SST_INOUT(GiTexelSums) a, vec3 x, vec3 n, 
   a.count[k] += 1.0f;
 }
 
-// The radiance given to texels that received nothing: the mean of all that arrived (sst), or
-// Capsaicin's sum over populated texels / #populated / #empty (B4 of GI1.md).
-SST_FUNC vec3 gi_backup(SST_IN(GiTexelSums) a, bool capsaicin) {
+// The radiance given to texels that received nothing: the mean of the populated texels spread
+// over the empty ones (divided by their number: the paper's "average the radiance from the
+// populated cells and distribute the result uniformly across the untraced cells", and Capsaicin's
+// formula), or that mean itself. Guiding sends no ray to the texels it predicts dark, so the plain
+// mean fills dark texels with bright light, which the next frames reproject and guide by: the
+// Cornell box's one-bounce light came out 55-134% too bright with it, 5-63% with the spread.
+SST_FUNC vec3 gi_backup(SST_IN(GiTexelSums) a, bool mean) {
   vec3 sum = vec3(0.0f);
   vec3 texel_means = vec3(0.0f);
   float populated = 0.0f;
@@ -219,7 +223,7 @@ SST_FUNC vec3 gi_backup(SST_IN(GiTexelSums) a, bool capsaicin) {
       populated += 1.0f;
     }
   }
-  if (capsaicin) return sum / max(populated, 1.0f) / max(64.0f - populated, 1.0f);
+  if (!mean) return sum / max(populated, 1.0f) / max(64.0f - populated, 1.0f);
   return populated > 0.0f ? texel_means / populated : vec3(0.0f);
 }
 
@@ -282,7 +286,7 @@ SST_FUNC void gi_stage_reproject(GI_CTX_PARAM uint tile) {
   for (uint c = 0u; c < 64u; ++c)
     gi_sums_add_reprojected(a, px.position, px.ng, fx, pp.position, fp, c,
                             GI_RADIANCE(prev * gi_tiles(GF) * 64u + prev_tile * 64u + c), true);
-  vec3 backup = gi_backup(a, (GF.flags & GI10_BACKUP_CAPSAICIN) != 0u);
+  vec3 backup = gi_backup(a, (GF.flags & GI10_BACKUP_MEAN) != 0u);
   for (uint c = 0u; c < 64u; ++c) GI_RADIANCE(radiance_base + c) = gi_sums_texel(a, c, backup);
   // The SH move with the probe unchanged (no parallax): the paper's choice.
   for (uint k = 0u; k < 9u; ++k) GI_SH(cur * gi_tiles(GF) * 9u + tile * 9u + k) = GI_SH(prev * gi_tiles(GF) * 9u + prev_tile * 9u + k);
@@ -473,7 +477,7 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
     // A lane whose own texel had history draws from the distribution; one without explores its
     // own texel (with no weight anywhere, every lane explores its own).
     uint texel = c;
-    if (a.count[c] > 0.0f && total > 0.0f) {
+    if ((GF.flags & GI10_GUIDING) != 0u && a.count[c] > 0.0f && total > 0.0f) {
       float target = u * total;
       texel = 0u;
       for (uint k = 1u; k < 64u; ++k)
@@ -713,7 +717,7 @@ SST_FUNC void gi_stage_blend(GI_CTX_PARAM uint j) {
     a.sum[r.texel] += vec4(l.x, l.y, l.z, r.t);
     a.count[r.texel] += 1.0f;
   }
-  vec3 backup = gi_backup(a, (GF.flags & GI10_BACKUP_CAPSAICIN) != 0u);
+  vec3 backup = gi_backup(a, (GF.flags & GI10_BACKUP_MEAN) != 0u);
   for (uint c = 0u; c < 64u; ++c) {
     vec4 value = gi_sums_texel(a, c, backup);
     Gi10Ray r = GI_RAYS(j * 64u + c);

@@ -5,8 +5,8 @@ The references are single images (direct + indirect). Each run's EXR has the lay
 direct pass, unbiased) and `indirect` (GI-1.0's estimate), so the reference's indirect mean is
 mean(reference) - mean(run.direct), and the bias of the indirect light is
 mean(run.indirect) / that - 1 per channel (the direct pass's noise moves the image mean by < 0.3%
-at 1 spp over these images). Prints one row per run: scene, cache warm-up frames, image RMSE, SSIM,
-the indirect bias (R, G, B), and the time of the measured frame.
+at 1 spp over these images). Prints one row per point of the axes, seeds pooled (mean, and the
+standard deviation over seeds): image RMSE, SSIM and the indirect bias (R, G, B).
 Usage: scripts/gi10_bias.py results/gi10-static [--markdown]
 """
 import json
@@ -27,7 +27,7 @@ def layer_means(exr, layer):
 def main():
     folder = sys.argv[1]
     markdown = "--markdown" in sys.argv
-    rows = []
+    groups = {}
     runs = os.path.join(folder, "runs")
     for run in sorted(os.listdir(runs)):
         rec = json.load(open(os.path.join(runs, run, "run.json")))
@@ -36,18 +36,28 @@ def main():
         indirect = layer_means(exr, "indirect")
         ref = rec["metrics"]["mean_reference"]
         bias = [ind / (r - d) - 1.0 if r - d > 0 else float("nan") for ind, r, d in zip(indirect, ref, direct)]
-        rows.append((rec["scene"], rec["axes"].get("cache_warmup_frames", ""), rec["metrics"]["rmse"],
-                     rec["metrics"]["ssim"], bias, rec.get("frame_ms", {}).get("median", float("nan"))
-                     if isinstance(rec.get("frame_ms"), dict) else rec.get("frame_ms", float("nan"))))
+        key = (rec["scene"],) + tuple(sorted((k, str(v)) for k, v in rec["axes"].items()))
+        groups.setdefault(key, []).append((rec["metrics"]["rmse"], rec["metrics"]["ssim"], bias))
+    axes = [k for k, _ in next(iter(groups))[1:]] if groups else []
     if markdown:
-        print("| scene | warm-up frames | RMSE | SSIM | indirect bias R | G | B |")
-        print("|---|---|---|---|---|---|---|")
-    for scene, warm, rmse, ssim, bias, ms in rows:
-        b = " | ".join("%+.1f%%" % (100 * v) for v in bias)
+        print("| scene | " + " | ".join(axes) + " | seeds | RMSE | SSIM | indirect bias R | G | B |")
+        print("|---|" + "---|" * len(axes) + "---|---|---|---|---|---|")
+    for key, rows in groups.items():
+        n = len(rows)
+        mean = lambda xs: sum(xs) / len(xs)
+        sd = lambda xs: (sum((x - mean(xs)) ** 2 for x in xs) / (len(xs) - 1)) ** 0.5 if len(xs) > 1 else 0.0
+        rmse = mean([r[0] for r in rows])
+        ssim = mean([r[1] for r in rows])
+        cells = []
+        for c in range(3):
+            b = [r[2][c] for r in rows]
+            cells.append("%+.1f%% (sd %.1f)" % (100 * mean(b), 100 * sd(b)) if n > 1 else "%+.1f%%" % (100 * b[0]))
+        values = [v for _, v in key[1:]]
         if markdown:
-            print("| %s | %s | %.4f | %.3f | %s |" % (scene, warm, rmse, ssim, b))
+            print("| %s | %s | %d | %.4f | %.3f | %s |" % (key[0], " | ".join(values), n, rmse, ssim, " | ".join(cells)))
         else:
-            print("%-16s %5s  rmse %.4f  ssim %.3f  bias %s" % (scene, warm, rmse, ssim, b))
+            print("%-15s %s  n=%d rmse %.4f ssim %.3f  bias %s" % (key[0], " ".join(values), n, rmse, ssim,
+                                                                  " | ".join(cells)))
 
 
 if __name__ == "__main__":

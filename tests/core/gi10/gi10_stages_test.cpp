@@ -1,0 +1,171 @@
+// Single stages of gi10_stages.h on the CPU (GI1.md §9.1): the hash grid's invariants under forced
+// collisions (T7) and the guiding's ray counts against its weights (T4).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+
+#include "core/gi10/gi10_cpu.h"
+
+namespace sst {
+namespace {
+
+// A hash table of one bucket (every key collides) with 16 slots.
+struct OneBucket {
+  glsl::Gi10Frame frame{};
+  std::vector<uint32_t> hash = std::vector<uint32_t>(32, 0u), counters = std::vector<uint32_t>(GI10_COUNTERS, 0u);
+  Gi10Buffers b;
+  OneBucket() {
+    frame.num_buckets = 1;
+    frame.tiles_per_bucket = 16;
+    frame.tile_decay = 50;
+    b.frame = &frame;
+    b.hash = hash.data();
+    b.counters = counters.data();
+  }
+  uint32_t insert(const GiCellKey& k, bool* inserted = nullptr) {
+    bool fresh = false;
+    uint32_t slot = gi_hash_insert(b, k, fresh);
+    if (slot != kGiNoProbe) hash[16 + slot] = frame.frame;  // as the trace stage touches it
+    if (inserted) *inserted = fresh;
+    return slot;
+  }
+  void purge() {
+    for (uint32_t s = 0; s < 16; ++s) gi_stage_purge(b, s);
+  }
+};
+
+GiCellKey key(uint32_t i) {
+  GiCellKey k;
+  k.level = 3;
+  k.tile = uvec3(i, 2 * i + 1, 7);
+  k.dir = uvec3(2, 2, 4);
+  k.short_ray = 0;
+  return k;
+}
+
+TEST(Gi10HashGrid, SixteenCollidingKeysAreAllFoundAndASeventeenthFails) {
+  for (int order = 0; order < 10; ++order) {
+    std::vector<uint32_t> ids(16);
+    for (uint32_t i = 0; i < 16; ++i) ids[i] = i;
+    std::shuffle(ids.begin(), ids.end(), std::mt19937(order));
+    OneBucket t;
+    std::set<uint32_t> slots;
+    for (uint32_t i : ids) {
+      bool fresh = false;
+      uint32_t s = t.insert(key(i), &fresh);
+      ASSERT_NE(s, kGiNoProbe);
+      EXPECT_TRUE(fresh);
+      slots.insert(s);
+    }
+    EXPECT_EQ(slots.size(), 16u);  // no key shares a slot
+    // Every key is found again, in its own slot, whatever the insertion order was.
+    for (uint32_t i = 0; i < 16; ++i) {
+      bool fresh = true;
+      uint32_t s = t.insert(key(i), &fresh);
+      EXPECT_FALSE(fresh);
+      EXPECT_EQ(t.hash[s], gi_key_checksum(key(i)));
+    }
+    EXPECT_EQ(t.insert(key(16)), kGiNoProbe);  // the bucket is full: the ray is lost (and counted)
+  }
+}
+
+TEST(Gi10HashGrid, ATileLivesFortyNineUntouchedFramesAndIsFreedAtFifty) {
+  OneBucket t;
+  t.frame.frame = 100;
+  uint32_t s = t.insert(key(1));
+  t.frame.frame = 149;
+  t.purge();
+  EXPECT_NE(t.hash[s], 0u);
+  t.frame.frame = 150;
+  t.purge();
+  EXPECT_EQ(t.hash[s], 0u);
+  EXPECT_EQ(t.counters[GI10_COUNT_EVICTED], 1u);
+}
+
+TEST(Gi10HashGrid, AKeyBehindAFreedSlotIsNotDuplicated) {
+  // GI1.md B6: A in slot 0, B in slot 1; A is freed; inserting B again must find slot 1 (Capsaicin
+  // would claim the hole and give B a second tile with empty history).
+  OneBucket t;
+  uint32_t a = t.insert(key(1)), b = t.insert(key(2));
+  t.hash[a] = 0u;
+  bool fresh = true;
+  EXPECT_EQ(t.insert(key(2), &fresh), b);
+  EXPECT_FALSE(fresh);
+  EXPECT_EQ(std::count(t.hash.begin(), t.hash.begin() + 16, gi_key_checksum(key(2))), 1);
+}
+
+TEST(Gi10Guiding, RaysPerTexelFollowTheReconstructedLuminanceTimesCosine) {
+  // An 8x8 image (one screen tile) of floor; the probe spawned at pixel (3, 3) reconstructs from
+  // the reprojected probe at the same pixel, whose texel c holds luminance c % 5 (0 for some), so
+  // every lane has history and draws texels in proportion to luminance x cos (never a texel of
+  // weight 0). Over 4000 frames' draws the counts match the expectation (chi-square).
+  const uint32_t w = 8, h = 8;
+  glsl::Gi10Frame f{};
+  f.width = w;
+  f.height = h;
+  f.tiles_x = f.tiles_y = 1;
+  f.spawn_x = f.spawn_y = 1;
+  f.mask_levels = 1;
+  f.k_probe = 1.0f;
+  f.flags = GI10_GUIDING;
+  f.view.eye = vec3(0, 5, 0);
+  std::vector<glsl::Gi10Pixel> pixels(2 * w * h);
+  for (uint32_t i = 0; i < w * h; ++i) {
+    pixels[i].position = vec3(float(i % w) * 0.01f, 0.0f, float(i / w) * 0.01f);
+    pixels[i].depth = 5.0f;
+    pixels[i].ng = vec3(0, 1, 0);
+  }
+  std::vector<uint32_t> mask(2, kGiNoProbe), spawn(8, 0u);
+  mask[0] = gi_pack(uvec2(3, 3));
+  spawn[0] = gi_pack(uvec2(3, 3));
+  std::vector<vec4> radiance(2 * 64);
+  std::vector<double> weight(64, 0.0);
+  for (uint32_t c = 0; c < 64; ++c) {
+    float l = float(c % 5);
+    radiance[c] = vec4(l, l, l, kGiMissDistance);  // misses: direction only, no parallax
+  }
+  std::vector<glsl::Gi10Ray> rays(64);
+  Gi10Buffers b;
+  b.frame = &f;
+  b.pixels = pixels.data();
+  b.mask = mask.data();
+  b.radiance = radiance.data();
+  b.spawn = spawn.data();
+  b.rays = rays.data();
+  std::vector<double> count(64, 0.0);
+  int lanes_with_history = 0;
+  for (uint32_t frame = 0; frame < 4000; ++frame) {
+    f.frame = 2 * frame;  // parity 0: the buffers above are this frame's
+    gi_stage_sample(b, 0);
+    lanes_with_history = 0;
+    for (uint32_t c = 0; c < 64; ++c) {
+      count[rays[c].texel] += 1.0;
+      if (rays[c].recon_distance >= 0.0f) ++lanes_with_history;
+    }
+  }
+  ASSERT_EQ(lanes_with_history, 64);  // the probe reprojects onto itself: every texel has history
+  double total = 0.0;
+  for (uint32_t c = 0; c < 64; ++c) {
+    weight[c] = double(c % 5) * gi_texel_local_direction(c, vec2(0.5f, 0.5f)).z;
+    total += weight[c];
+  }
+  double chi2 = 0.0;
+  int dof = -1;
+  for (uint32_t c = 0; c < 64; ++c) {
+    double expected = 4000.0 * 64.0 * weight[c] / total;
+    if (expected == 0.0) {
+      EXPECT_EQ(count[c], 0.0) << "texel " << c << " has no weight";
+      continue;
+    }
+    chi2 += (count[c] - expected) * (count[c] - expected) / expected;
+    ++dof;
+  }
+  // 51 degrees of freedom: the 0.999 quantile is 90.6.
+  EXPECT_LT(chi2, 90.6) << "dof " << dof;
+}
+
+}  // namespace
+}  // namespace sst

@@ -154,7 +154,7 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   Gi10Resolved r;
   if (p.feedback) r.flags |= GI10_FEEDBACK;
   if (pick("probe_emission", p.probe_emission, {"auto", "on", "off"}, "off", "on") == "on") r.flags |= GI10_PROBE_EMISSION;
-  if (pick("backup", p.backup, {"auto", "spread", "mean"}, "spread", "spread") == "mean") r.flags |= GI10_BACKUP_MEAN;
+  if (pick("backup", p.backup, {"auto", "mean", "spread"}, "mean", "spread") == "mean") r.flags |= GI10_BACKUP_MEAN;
   r.sh_weight = pick("sh_weight", p.sh_weight, {"auto", "solid_angle", "capsaicin"}, "solid_angle", "capsaicin") ==
                         "capsaicin"
                     ? 0.125f
@@ -353,19 +353,23 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   const std::vector<vec4>& e = params_.irradiance_denoiser ? denoised : raw;
   Image raw_image(context.width, context.height), e_image(context.width, context.height);
   std::vector<vec4> feedback(sizes_.pixels());
-  for (int y = 0; y < context.height; ++y)
+  tbb::parallel_for(0, context.height, [&](int y) {
     for (int x = 0; x < context.width; ++x) {
       size_t i = size_t(y) * size_t(context.width) + size_t(x);
-      vec3 irradiance = glm::max(vec3(e[i].x, e[i].y, e[i].z), vec3(0.0f));
-      if (!is_finite(irradiance)) irradiance = vec3(0.0f);
+      auto clean = [](vec4 v) {
+        vec3 c = glm::max(vec3(v.x, v.y, v.z), vec3(0.0f));
+        return is_finite(c) ? c : vec3(0.0f);
+      };
+      vec3 irradiance = clean(e[i]);
       vec3 indirect = out.albedo.rgb(x, y) * irradiance * float(1.0 / M_PI);
       vec3 color = out.direct.rgb(x, y) + indirect;
       out.indirect.set_rgb(x, y, indirect);
       out.color.set_rgb(x, y, color);
       e_image.set_rgb(x, y, irradiance);
-      raw_image.set_rgb(x, y, glm::max(vec3(raw[i].x, raw[i].y, raw[i].z), vec3(0.0f)));
+      raw_image.set_rgb(x, y, clean(raw[i]));
       feedback[i] = vec4(color, 0.0f);
     }
+  });
   executor.write_feedback(feedback);
   double compose_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   timer.add("gi10_compose", compose_ms);

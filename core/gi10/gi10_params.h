@@ -41,16 +41,15 @@ struct Gi10Params {
   void visit(V&& v) {
     v("preset", preset,
       "fair: sst's direct pass for all direct light, probes see reflected light only, the corrected SH weight "
-      "2 pi/64, scene-relative cache cells; capsaicin: AMD Capsaicin v1.2's "
-      "behaviour (emitters seen by probes return their emission, SH weight 1/8, 1 mm / 0.1 cell base, its blur mask)");
+      "2 pi/64, the reached texels' mean as fill of empty ones, scene-relative cache cells; capsaicin: AMD Capsaicin v1.2's "
+      "behaviour (emitters seen by probes return their emission, SH weight 1/8, its darker fill, 1 mm / 0.1 cell base, its blur mask)");
     v("feedback", feedback,
       "temporal radiance feedback: cache points visible last frame take last frame's image (light of every bounce) "
       "instead of a light sample (one bounce)");
     v("probe_emission", probe_emission, "auto|on|off: probe rays that hit an emitter return its emission (on "
       "double-counts direct light with sst's direct pass)");
-    v("backup", backup, "auto|spread|mean: radiance of probe texels no ray reached: the reached texels' mean "
-      "spread over the empty ones (the paper, Capsaicin; both presets) or that mean (GI1.md B4's proposal, too "
-      "bright under guiding)");
+    v("backup", backup, "auto|mean|spread: radiance of probe texels no ray reached: the mean of the reached "
+      "texels (fair) or that mean spread over the empty ones, divided by their number (capsaicin; GI1.md B4)");
     v("sh_weight", sh_weight, "auto|solid_angle|capsaicin: SH projection weight per texel, 2 pi/64 or 1/8 (B3)");
     v("blur_mask", blur_mask, "auto|full|capsaicin: the denoiser's blur-mask dilation; capsaicin skips the centre "
       "row and column (B7)");

@@ -206,12 +206,10 @@ SST_FUNC void gi_sums_add_reprojected(SST_INOUT(GiTexelSums) a, vec3 x, vec3 n, 
   a.count[k] += 1.0f;
 }
 
-// The radiance given to texels that received nothing: the mean of the populated texels spread
-// over the empty ones (divided by their number: the paper's "average the radiance from the
-// populated cells and distribute the result uniformly across the untraced cells", and Capsaicin's
-// formula), or that mean itself. Guiding sends no ray to the texels it predicts dark, so the plain
-// mean fills dark texels with bright light, which the next frames reproject and guide by: the
-// Cornell box's one-bounce light came out 55-134% too bright with it, 5-63% with the spread.
+// The radiance given to texels that received nothing: the mean of the texels rays reached, or, as
+// Capsaicin computes it, that mean spread over the empty texels (divided by their number; GI1.md
+// B4). Guiding sends no ray to the texels it predicts dark, so the mean brightens them and the
+// spread darkens them: measured in configs/gi10-static-one-bounce.json.
 SST_FUNC vec3 gi_backup(SST_IN(GiTexelSums) a, bool mean) {
   vec3 sum = vec3(0.0f);
   vec3 texel_means = vec3(0.0f);

@@ -141,31 +141,23 @@ struct GiCellKey {
   uint short_ray;
 };
 
-// H(e1..e8) = h(e1 + h(e2 + ... h(e8))), level first, short-ray bit innermost.
-SST_FUNC uint gi_key_pcg(SST_IN(GiCellKey) k) {
-  uint h = pcg_hash(k.short_ray);
-  h = pcg_hash(k.dir.z + h);
-  h = pcg_hash(k.dir.y + h);
-  h = pcg_hash(k.dir.x + h);
-  h = pcg_hash(k.tile.z + h);
-  h = pcg_hash(k.tile.y + h);
-  h = pcg_hash(k.tile.x + h);
-  return pcg_hash(k.level + h);
+// H(e1..e8) = h(e1 + h(e2 + ... h(e8))), level first, short-ray bit innermost; h is pcg_hash (the
+// bucket) or gi_xx (the checksum).
+SST_FUNC uint gi_key_hash_step(uint v, bool xx) { return xx ? gi_xx(v) : pcg_hash(v); }
+
+SST_FUNC uint gi_key_hash(SST_IN(GiCellKey) k, bool xx) {
+  uint h = gi_key_hash_step(k.short_ray, xx);
+  h = gi_key_hash_step(k.dir.z + h, xx);
+  h = gi_key_hash_step(k.dir.y + h, xx);
+  h = gi_key_hash_step(k.dir.x + h, xx);
+  h = gi_key_hash_step(k.tile.z + h, xx);
+  h = gi_key_hash_step(k.tile.y + h, xx);
+  h = gi_key_hash_step(k.tile.x + h, xx);
+  return gi_key_hash_step(k.level + h, xx);
 }
 
-SST_FUNC uint gi_key_xx(SST_IN(GiCellKey) k) {
-  uint h = gi_xx(k.short_ray);
-  h = gi_xx(k.dir.z + h);
-  h = gi_xx(k.dir.y + h);
-  h = gi_xx(k.dir.x + h);
-  h = gi_xx(k.tile.z + h);
-  h = gi_xx(k.tile.y + h);
-  h = gi_xx(k.tile.x + h);
-  return gi_xx(k.level + h);
-}
-
-SST_FUNC uint gi_key_bucket(SST_IN(GiCellKey) k, uint num_buckets) { return gi_key_pcg(k) % num_buckets; }
-SST_FUNC uint gi_key_checksum(SST_IN(GiCellKey) k) { return max(gi_key_xx(k), 1u); }  // 0: an empty slot
+SST_FUNC uint gi_key_bucket(SST_IN(GiCellKey) k, uint num_buckets) { return gi_key_hash(k, false) % num_buckets; }
+SST_FUNC uint gi_key_checksum(SST_IN(GiCellKey) k) { return max(gi_key_hash(k, true), 1u); }  // 0: an empty slot
 
 // The direction code of a unit vector: 5 bins per axis centred on -1, -1/2, 0, 1/2, 1.
 SST_FUNC uint gi_direction_bin(float w) { return uint(clamp(floor(0.5f + 4.0f * (0.5f * w + 0.5f)), 0.0f, 4.0f)); }

@@ -47,6 +47,7 @@ SST_FUNC uint gi_hash_tiles(SST_IN(Gi10Frame) f) { return f.num_buckets * f.tile
 SST_FUNC uint gi_pack(uvec2 p) { return (p.x << 16u) | p.y; }
 SST_FUNC uvec2 gi_unpack(uint v) { return uvec2(v >> 16u, v & 0xFFFFu); }
 SST_FUNC uint gi_pixel_index(SST_IN(Gi10Frame) f, uvec2 p) { return p.y * f.width + p.x; }
+SST_FUNC uint gi_tile_of(SST_IN(Gi10Frame) f, uvec2 p) { return (p.y / 8u) * f.tiles_x + p.x / 8u; }  // screen tile
 SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 
 // Mip `level` of the probe mask: its size and first element (within one of the two copies).
@@ -278,7 +279,7 @@ SST_FUNC void gi_stage_reproject(GI_CTX_PARAM uint tile) {
   Gi10Pixel pp = gi_pixel(GI_CTX prev, gi_pixel_index(GF, prev_seed));
   GiFrame fx = gi_frame(px.ng);
   GiFrame fp = gi_frame(pp.ng);
-  uint prev_tile = (prev_seed.y / 8u) * GF.tiles_x + prev_seed.x / 8u;
+  uint prev_tile = gi_tile_of(GF, prev_seed);
   GiTexelSums a;
   gi_sums_clear(a);
   for (uint c = 0u; c < 64u; ++c)
@@ -314,7 +315,7 @@ SST_FUNC void gi_stage_spawn(GI_CTX_PARAM uint j) {
   uvec2 seed = min(uvec2((j % GF.spawn_x) * 16u, (j / GF.spawn_x) * 16u) + GF.jitter16, uvec2(GF.width - 1u, GF.height - 1u));
   bool sky = gi_sky(gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)));
   GI_SPAWN(j) = sky ? kGiNoProbe : gi_pack(seed);
-  uint tile_mask = GI_MASK(cur * gi_mask_total(GF) + (seed.y / 8u) * GF.tiles_x + seed.x / 8u);
+  uint tile_mask = GI_MASK(cur * gi_mask_total(GF) + gi_tile_of(GF, seed));
   GI_SPAWN(ns + j) = (!sky && tile_mask != kGiNoProbe) ? 1u : 0u;  // an override: its tile has a probe
   if (!sky) GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_PROBES), 1u);
 }
@@ -706,7 +707,7 @@ SST_FUNC void gi_stage_blend(GI_CTX_PARAM uint j) {
   if (packed == kGiNoProbe) return;
   uint cur = gi_parity(GF);
   uvec2 seed = gi_unpack(packed);
-  uint tile = (seed.y / 8u) * GF.tiles_x + seed.x / 8u;
+  uint tile = gi_tile_of(GF, seed);
   GiTexelSums a;
   gi_sums_clear(a);
   for (uint c = 0u; c < 64u; ++c) {
@@ -769,7 +770,7 @@ SST_FUNC void gi_stage_filter(GI_CTX_PARAM uint pass, uint source, uint target, 
   if (packed == kGiNoProbe) return;
   uint cur = gi_parity(GF);
   uvec2 seed = gi_unpack(packed);
-  uint tile = (seed.y / 8u) * GF.tiles_x + seed.x / 8u;
+  uint tile = gi_tile_of(GF, seed);
   uint nt64 = gi_tiles(GF) * 64u;
   Gi10Pixel px = gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed));
   GiFrame fx = gi_frame(px.ng);
@@ -789,7 +790,7 @@ SST_FUNC void gi_stage_filter(GI_CTX_PARAM uint pass, uint source, uint target, 
     GiFrame fq = gi_frame(pq.ng);
     uint cq = gi_texel_of(fq, w);
     vec3 wq = gi_texel_direction(fq, cq);
-    vec4 vq = GI_RADIANCE(source * nt64 + ((qs.y / 8u) * GF.tiles_x + qs.x / 8u) * 64u + cq);
+    vec4 vq = GI_RADIANCE(source * nt64 + (gi_tile_of(GF, qs)) * 64u + cq);
     float dq = min(vq.w, d);
     SST_PRECISE vec3 h = pq.position + wq * dq;
     if (dot3(w, normalize3(h - px.position)) < GF.filter_angle) continue;
@@ -812,7 +813,7 @@ SST_FUNC void gi_stage_project(GI_CTX_PARAM uint j) {
   if (packed == kGiNoProbe) return;
   uint cur = gi_parity(GF);
   uvec2 seed = gi_unpack(packed);
-  uint tile = (seed.y / 8u) * GF.tiles_x + seed.x / 8u;
+  uint tile = gi_tile_of(GF, seed);
   GiFrame fx = gi_frame(gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)).ng);
   vec3 sh[9];
   for (uint k = 0u; k < 9u; ++k) sh[k] = vec3(0.0f);
@@ -880,7 +881,7 @@ SST_FUNC void gi_stage_interpolate(GI_CTX_PARAM uint index) {
         float wi = wsum > 0.0f ? w[i] / wsum : 1.0f / found;
         if (wi > 0.0f) {
           uvec2 s = gi_unpack(q[i]);
-          e += wi * gi_probe_irradiance(GI_CTX (s.y / 8u) * GF.tiles_x + s.x / 8u, gi_ns(px));
+          e += wi * gi_probe_irradiance(GI_CTX gi_tile_of(GF, s), gi_ns(px));
         }
       }
       out_value = gi_vec4(e, hint);

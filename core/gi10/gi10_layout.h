@@ -19,7 +19,7 @@ using glm::vec4;
 #define GI10_SHORT_RAY_BIT 8u       // the short-ray bit in the cache key
 #define GI10_BYPASS 16u             // probe rays shorter than a cell keep their own shadow-ray sample
 #define GI10_BLUR_MASK_CAPSAICIN 32u  // the blur-mask dilation skips its centre row and column (B7)
-#define GI10_PROBE_FILTER 64u       // filter probes across neighbours (S17)
+#define GI10_PROBE_FILTER 64u       // filter probes across neighbours (S17; the driver skips its stages without it)
 #define GI10_DENOISE 128u           // GI-1.0's temporal denoiser (S20); else E_out = interpolated E
 #define GI10_GUIDING 256u           // probe rays guided by the reconstructed radiance; else one per texel
 
@@ -65,7 +65,6 @@ using glm::vec4;
 #define GI10_COUNT_EVICTED 11u
 #define GI10_COUNT_LIVE_TILES 12u
 #define GI10_COUNT_BLUR_WORK 13u      // S = sum over pixels of (2 m + 1)^2 (the denoiser's blur radius)
-#define GI10_COUNT_SPAWN_LIST 14u     // probes in this frame's spawn list
 #define GI10_COUNTERS 16u
 
 // Everything the stages read that is not a buffer. The host fills it once per frame.

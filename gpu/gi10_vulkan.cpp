@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "core/gi10/gi10_math.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/path_trace_pass.h"
 
@@ -43,11 +44,10 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   const VulkanContext& vk = gpu_->vulkan();
   sizes_ = s;
   uint64_t px = s.pixels(), nt = s.tiles(), ns = s.spawns(), t = s.hash_tiles;
-  uint64_t spawn_words = 3 * ns + 2 * nt + (ns + 255) / 256 + (nt + 255) / 256 + 2;
   const std::pair<uint64_t, size_t> shapes[kBufferCount] = {
       {1, sizeof(glsl::Gi10Frame)}, {2 * px, sizeof(glsl::Gi10Pixel)}, {px, 16},  {2 * uint64_t(s.mask_total), 4},
-      {2 * nt * 64, 16},            {2 * nt * 9, 16},                 {spawn_words, 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
-      {2 * t, 4},                   {t * 85, 16},                     {t * 64 * 7, 4},  {3 * px, 16},
+      {2 * nt * 64, 16},            {2 * nt * 9, 16},                 {s.spawn_words(), 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
+      {2 * t, 4},                   {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
       {3 * px, 16},                 {px, 16},                         {GI10_COUNTERS, 4}, {px, 16}};
   const char* names[kBufferCount] = {"gi10 frame", "gi10 pixels", "gi10 emission", "gi10 probe mask",
                                      "gi10 probe radiance", "gi10 probe SH", "gi10 spawn lists", "gi10 probe rays",

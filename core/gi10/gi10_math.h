@@ -17,6 +17,8 @@ SST_CONSTANT uint kGiSpawnTile = 16u;    // pixels per spawn-tile side: 1/4 ray 
 SST_CONSTANT uint kGiNoProbe = 0xFFFFFFFFu;
 SST_CONSTANT uint kGiCellsPerTile = 85u;  // 8x8 + 4x4 + 2x2 + 1 cells of one hash tile's mips
 SST_CONSTANT float kGiMissDistance = 1e9f;
+SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
+SST_CONSTANT uint kGiBlock = 256u;     // elements per block of the spawn stage's list compaction
 
 SST_FUNC float gi_sign(float x) { return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f); }
 

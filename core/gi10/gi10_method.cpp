@@ -59,7 +59,7 @@ class Gi10Cpu final : public Gi10Executor {
     mask_.assign(2 * uint64_t(s.mask_total), kGiNoProbe);
     radiance_.assign(2 * nt * 64, vec4(0.0f));
     sh_.assign(2 * nt * 9, vec4(0.0f));
-    spawn_.assign(3 * ns + 2 * nt + (ns + 255) / 256 + (nt + 255) / 256 + 2, 0u);
+    spawn_.assign(s.spawn_words(), 0u);
     rays_.assign(ns * 64, glsl::Gi10Ray{});
     hash_.assign(2 * t, 0u);
     values_.assign(t * kGiCellsPerTile, vec4(0.0f));
@@ -189,6 +189,15 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   return r;
 }
 
+uint64_t Gi10Sizes::list_blocks() const { return (spawns() + kGiBlock - 1) / kGiBlock + (tiles() + kGiBlock - 1) / kGiBlock; }
+uint64_t Gi10Sizes::spawn_words() const { return 3 * spawns() + 2 * tiles() + list_blocks() + 2; }
+
+glm::uvec2 gi10_mask_level_size(const Gi10Sizes& sizes, uint32_t level) {
+  glm::uvec2 size(sizes.tiles_x, sizes.tiles_y);
+  for (uint32_t i = 0; i < level; ++i) size = glm::max((size + 1u) / 2u, glm::uvec2(1u));
+  return size;
+}
+
 Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params) {
   Gi10Sizes s;
   s.width = uint32_t(width);
@@ -197,14 +206,11 @@ Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params) {
   s.tiles_y = (s.height + 7) / 8;
   s.spawn_x = (s.width + 15) / 16;
   s.spawn_y = (s.height + 15) / 16;
-  uint32_t w = s.tiles_x, h = s.tiles_y;
   s.mask_levels = 1;
-  s.mask_total = w * h;
-  while (w > 1 || h > 1) {
-    w = std::max((w + 1) / 2, 1u);
-    h = std::max((h + 1) / 2, 1u);
-    s.mask_total += w * h;
-    ++s.mask_levels;
+  s.mask_total = s.tiles_x * s.tiles_y;
+  for (glm::uvec2 size(s.tiles_x, s.tiles_y); size.x > 1 || size.y > 1; ++s.mask_levels) {
+    size = gi10_mask_level_size(s, s.mask_levels);
+    s.mask_total += size.x * size.y;
   }
   s.hash_tiles = (1u << params.hash_buckets_log2) << params.tiles_per_bucket_log2;
   return s;
@@ -312,10 +318,9 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   run(GI10_STAGE_REPROJECT, 0, sizes_.tiles());
   run(GI10_STAGE_SPAWN, 0, sizes_.spawns());
   run(GI10_STAGE_EMPTY_TILES, 0, sizes_.tiles());
-  uint64_t blocks = (sizes_.spawns() + 255) / 256 + (sizes_.tiles() + 255) / 256;
-  run(GI10_STAGE_LIST_COUNT, 0, blocks);
+  run(GI10_STAGE_LIST_COUNT, 0, sizes_.list_blocks());
   run(GI10_STAGE_LIST_SCAN, 0, 1);
-  run(GI10_STAGE_LIST_COMPACT, 0, blocks);
+  run(GI10_STAGE_LIST_COMPACT, 0, sizes_.list_blocks());
   run(GI10_STAGE_PATCH, 0, std::min(sizes_.spawns(), sizes_.tiles()));
   run(GI10_STAGE_SAMPLE, 0, sizes_.spawns());
   run(GI10_STAGE_TRACE, 0, sizes_.spawns() * 64);
@@ -324,13 +329,8 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   run(GI10_STAGE_RESOLVE, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_BLEND, 0, sizes_.spawns());
   for (uint32_t level = 1; level < sizes_.mask_levels; ++level) {
-    Gi10Sizes s = sizes_;
-    uint32_t w = s.tiles_x, h = s.tiles_y;
-    for (uint32_t i = 0; i < level; ++i) {
-      w = std::max((w + 1) / 2, 1u);
-      h = std::max((h + 1) / 2, 1u);
-    }
-    run(GI10_STAGE_MASK_MIP, level, uint64_t(w) * h);
+    glm::uvec2 size = gi10_mask_level_size(sizes_, level);
+    run(GI10_STAGE_MASK_MIP, level, uint64_t(size.x) * size.y);
   }
   if (params_.probe_filter) {
     run(GI10_STAGE_COPY_PROBES, 0, sizes_.tiles() * 64);

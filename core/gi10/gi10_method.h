@@ -25,9 +25,14 @@ struct Gi10Sizes {
   uint64_t pixels() const { return uint64_t(width) * height; }
   uint64_t tiles() const { return uint64_t(tiles_x) * tiles_y; }
   uint64_t spawns() const { return uint64_t(spawn_x) * spawn_y; }
+  // Blocks of the spawn stage's list compaction (override flags, then empty-tile flags).
+  uint64_t list_blocks() const;
+  uint64_t spawn_words() const;  // the SPAWN buffer's elements (gi10_stages.h)
   bool operator==(const Gi10Sizes&) const = default;
 };
 Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params);
+// The tile grid of mip `level` of the probe mask (as gi_mask_size of gi10_stages.h computes it).
+glm::uvec2 gi10_mask_level_size(const Gi10Sizes& sizes, uint32_t level);
 
 // Where the stages run. Every buffer starts zeroed (the probe mask: no probe) after allocate().
 class Gi10Executor {

@@ -48,7 +48,6 @@ SST_FUNC uint gi_pack(uvec2 p) { return (p.x << 16u) | p.y; }
 SST_FUNC uvec2 gi_unpack(uint v) { return uvec2(v >> 16u, v & 0xFFFFu); }
 SST_FUNC uint gi_pixel_index(SST_IN(Gi10Frame) f, uvec2 p) { return p.y * f.width + p.x; }
 SST_FUNC uint gi_tile_of(SST_IN(Gi10Frame) f, uvec2 p) { return (p.y / 8u) * f.tiles_x + p.x / 8u; }  // screen tile
-SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 
 // Mip `level` of the probe mask: its size and first element (within one of the two copies).
 SST_FUNC uvec2 gi_mask_size(SST_IN(Gi10Frame) f, uint level) {
@@ -300,7 +299,6 @@ SST_FUNC void gi_stage_reproject(GI_CTX_PARAM uint tile) {
 // SPAWN layout: [0, Ns) the spawn list (packed seed or kGiNoProbe); [Ns, 2Ns) override flags;
 // [2Ns, 3Ns) the override list; [3Ns, 3Ns + Nt) empty-tile flags; then the empty list (Nt); then
 // the blocks' counts (override blocks, then empty blocks); then the two list lengths.
-SST_CONSTANT uint kGiBlock = 256u;
 
 SST_FUNC uint gi_override_blocks(SST_IN(Gi10Frame) f) { return (gi_spawns(f) + kGiBlock - 1u) / kGiBlock; }
 SST_FUNC uint gi_empty_blocks(SST_IN(Gi10Frame) f) { return (gi_tiles(f) + kGiBlock - 1u) / kGiBlock; }

@@ -34,15 +34,17 @@ GpuLights::GpuLights(const VulkanContext& context, const PackedLights& packed)
       punctual_(upload_buffer(context, packed.punctual, "lights: punctual lights")),
       distribution_(upload_buffer(context, packed.distribution, "lights: distribution")),
       emissive_(upload_buffer(context, packed.emissive, "lights: emissive triangles")),
-      light_of_triangle_(upload_buffer(context, packed.light_of_triangle, "lights: light of triangle")) {}
+      light_of_triangle_(upload_buffer(context, packed.light_of_triangle, "lights: light of triangle")),
+      tree_(upload_buffer(context, packed.tree, "lights: emitter tree")) {}
 
 std::vector<const GpuBuffer*> GpuLights::buffers() const {
-  return {header_buffer_.get(), punctual_.get(), distribution_.get(), emissive_.get(), light_of_triangle_.get()};
+  return {header_buffer_.get(), punctual_.get(), distribution_.get(), emissive_.get(), light_of_triangle_.get(),
+          tree_.get()};
 }
 
 size_t GpuLights::bytes() const {
   return header_buffer_->size() + punctual_->size() + distribution_->size() + emissive_->size() +
-         light_of_triangle_->size();
+         light_of_triangle_->size() + tree_->size();
 }
 #endif  // SST_HAVE_VULKAN
 

@@ -26,8 +26,9 @@ const PackedLights& pack_lights(const Scene& scene, const LightSampler& lights);
 
 namespace sst::gpu {
 
-// The packed lights in five storage buffers, bound in the order of buffers() (the order of
-// LIGHT_BUFFERS(first) in GLSL: header, punctual, distribution, emissive, light_of_triangle).
+// The packed lights in six storage buffers, bound in the order of buffers() (the order of
+// LIGHT_BUFFERS(first) in GLSL: header, punctual, distribution, emissive, light_of_triangle,
+// tree).
 class GpuLights {
  public:
   static constexpr uint32_t kBufferCount = LIGHT_BUFFER_COUNT;
@@ -37,14 +38,14 @@ class GpuLights {
   GpuLights(const GpuLights&) = delete;
   GpuLights& operator=(const GpuLights&) = delete;
 
-  // Bindings first .. first + 4 of a shader that declares LIGHT_BUFFERS(first).
+  // Bindings first .. first + 5 of a shader that declares LIGHT_BUFFERS(first).
   std::vector<const GpuBuffer*> buffers() const;
   const glsl::LightHeader& header() const { return header_; }
   size_t bytes() const;
 
  private:
   glsl::LightHeader header_;
-  std::unique_ptr<GpuBuffer> header_buffer_, punctual_, distribution_, emissive_, light_of_triangle_;
+  std::unique_ptr<GpuBuffer> header_buffer_, punctual_, distribution_, emissive_, light_of_triangle_, tree_;
 };
 
 }  // namespace sst::gpu

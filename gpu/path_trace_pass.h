@@ -29,7 +29,7 @@ struct GpuPathTraceResult {
 // as PathTracer::render does with the same seed, params and diffuse_only. `ray_epsilon` is
 // scene_ray_epsilon(scene) (core/accel/embree_accel.h). Samples are dispatched in chunks (the
 // first of one sample per pixel, the rest sized from its time; gpu/sample_chunks.h), so no single
-// dispatch runs long. Bindings of pt.comp: 0..4 scene, 5..6 BVH, 7..11 lights, 12 the texels.
+// dispatch runs long. Bindings of pt.comp: 0..4 scene, 5..6 BVH, 7..12 lights, 13 the texels.
 GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                                       const GpuLights& lights, float ray_epsilon, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,

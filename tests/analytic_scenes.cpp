@@ -1,6 +1,8 @@
 #include "tests/analytic_scenes.h"
 
+#include <algorithm>
 #include <cmath>
+#include <random>
 
 namespace sst::test {
 namespace {
@@ -151,6 +153,63 @@ void scale_scene(Scene& scene, float k) {
   for (PunctualLight& l : scene.lights) l.position *= k;
   for (Camera& c : scene.cameras) c.eye *= k;
   scene.finalize_bounds();
+}
+
+Scene many_lights(uint32_t seed, int triangles, int points, int spots, bool sun) {
+  std::mt19937 rng(seed);
+  auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; };
+  auto direction = [&]() {
+    float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 6.2831853f), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    return vec3(r * std::cos(phi), z, r * std::sin(phi));
+  };
+  Scene s;
+  s.source = "generated:many_lights";
+  s.materials.push_back(diffuse_material("floor", 0.5f, 0.0f));
+  add_quad(s, {-5, 0, -5}, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, 0);
+  add_quad(s, {-5, 4, -5}, {5, 4, -5}, {5, 4, 5}, {-5, 4, 5}, 0);
+  const float radiance[4] = {2.0f, 8.0f, 30.0f, 5.0f};
+  const bool two_sided[4] = {false, false, true, true};
+  for (int k = 0; k < 4; ++k) {
+    Material m = diffuse_material("emitter", 0.0f, radiance[k]);
+    m.emission *= vec3(1.0f, 0.5f + 0.15f * float(k), 1.0f - 0.2f * float(k));
+    m.double_sided = two_sided[k];
+    s.materials.push_back(m);
+  }
+  for (int i = 0; i < triangles; ++i) {
+    vec3 c(uniform(-4.0f, 4.0f), uniform(0.2f, 3.8f), uniform(-4.0f, 4.0f));
+    float size = uniform(0.02f, 0.2f);
+    vec3 a = c + size * direction(), b = c + size * direction(), d = c + size * direction();
+    uint32_t base = uint32_t(s.positions.size());
+    vec3 n = glm::cross(b - a, d - a);
+    if (!(glm::length(n) > 1e-6f)) continue;
+    n = glm::normalize(n);
+    for (vec3 p : {a, b, d}) {
+      s.positions.push_back(p);
+      s.normals.push_back(n);
+      s.uvs.push_back(vec2(0.0f));
+    }
+    s.triangles.push_back({base, base + 1, base + 2});
+    s.triangle_material.push_back(1u + uint32_t(rng() % 4u));
+  }
+  for (int i = 0; i < points + spots; ++i) {
+    vec3 pos(uniform(-4.0f, 4.0f), uniform(0.5f, 3.5f), uniform(-4.0f, 4.0f));
+    vec3 color = vec3(uniform(0.2f, 1.0f), uniform(0.2f, 1.0f), uniform(0.2f, 1.0f)) * uniform(0.05f, 2.0f);
+    if (i < points) {
+      s.lights.push_back(punctual_light(LightType::Point, pos, vec3(0, -1, 0), color));
+    } else {
+      PunctualLight l = punctual_light(LightType::Spot, pos, direction() + vec3(0, -0.7f, 0), color * 4.0f);
+      float outer = uniform(0.2f, 1.2f), inner = outer * uniform(0.0f, 0.9f);
+      l.cos_outer = std::cos(outer);
+      l.cos_inner = std::cos(inner);
+      s.lights.push_back(l);
+    }
+  }
+  if (sun) s.lights.push_back(punctual_light(LightType::Directional, vec3(0.0f), vec3(0.3f, -1.0f, 0.2f), vec3(0.4f)));
+  s.cameras.push_back(camera("main", {0, 3.5f, 3.5f}, 1.0f));
+  s.cameras.back().forward = glm::normalize(vec3(0.0f, -1.0f, -1.0f));
+  s.cameras.back().up = glm::normalize(vec3(0.0f, 1.0f, -1.0f));
+  s.finalize_bounds();
+  return s;
 }
 
 }  // namespace sst::test

@@ -29,6 +29,14 @@ PunctualLight punctual_light(LightType type, vec3 position, vec3 direction, vec3
 // the scene bounds.
 void add_emissive_triangle(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 emission, bool double_sided);
 
+// Many small lights over a floor, for the light samplers' tests: a 10 m diffuse floor (y = 0,
+// double-sided, albedo 0.5) and a ceiling (y = 4), `triangles` small emissive triangles (sides
+// 2-20 cm) at random places and orientations in [-4, 4] x [0.2, 3.8] x [-4, 4] with four emissive
+// materials of different radiance (two one-sided, two double-sided), `points` point and `spots`
+// spot lights (random aims and cones), and one directional light when `sun` is set; a camera
+// looking down at the floor. Everything from `seed`.
+Scene many_lights(uint32_t seed, int triangles, int points, int spots, bool sun);
+
 // Scales every position, light and camera of a scene by s (scene-scale tests).
 void scale_scene(Scene& scene, float s);
 

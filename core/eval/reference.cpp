@@ -23,12 +23,12 @@ nlohmann::json shared_options(const RunSpec& run) {
   return o;
 }
 
-// The reference config's keys other than kind/spp/seed are parameters of `method`.
+// The reference config's keys other than kind/spp/seed/light_sampler are parameters of `method`.
 nlohmann::json method_overrides(const nlohmann::json& cfg, const std::string& method) {
   nlohmann::json params = nlohmann::json::object();
   const MethodInfo& info = find_method(method);
   for (const auto& [key, value] : cfg.items()) {
-    if (key == "kind" || key == "spp" || key == "seed") continue;
+    if (key == "kind" || key == "spp" || key == "seed" || key == "light_sampler") continue;
     bool known = std::any_of(info.params.begin(), info.params.end(), [&](const ParamInfo& p) { return p.name == key; });
     if (!known) throw Error("reference: '" + key + "' is not a parameter of its method '" + method + "'");
     params[key] = value;
@@ -58,6 +58,8 @@ ReferenceSpec reference_for(const RunSpec& run, const nlohmann::json& cfg, const
     r.options["method"] = "pt";
     r.options["spp"] = cfg.value("spp", 1024);
     r.options["seed"] = cfg.value("seed", 1000003u);
+    // Only when given, so that the identity (and the cache) of every other reference stays as it was.
+    if (cfg.contains("light_sampler")) r.options["light_sampler"] = cfg["light_sampler"];
     r.method_params = {{"max_bounces", 8}};
     r.method_params.update(method_overrides(cfg, "pt"));
   } else if (r.kind == "vpl") {

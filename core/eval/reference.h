@@ -9,6 +9,7 @@
 // | spp           | 1024 / 64 | samples per pixel (path / vpl)                                       |
 // | max_bounces   | 8       | path: indirect bounces                                                  |
 // | seed          | 1000003 | path: its own seed, independent of every run's seed (vpl: the run's)   |
+// | light_sampler | power   | path: the light sampler of its next-event estimation (RenderOptions)   |
 // | <parameter>   |         | any other pt (path) or exhaustive (vpl) parameter                     |
 //
 // Resolution, camera and diffuse_only are the run's. References always render on the CPU

@@ -623,7 +623,7 @@ SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CT
   float u2 = hash_rng_next(rng);
   vec2 u = vec2(u1, u2);
   LightSample ls;
-  if (!light_sample(SCENE_CTX LIGHT_CTX r.x2, u, ls)) {
+  if (!light_sample(SCENE_CTX LIGHT_CTX r.x2, r.ns2, u, ls)) {
     GI_RAYS(index) = r;
     return;
   }

@@ -1,7 +1,8 @@
 // Light sampling over every light of a scene, in the common subset of C++ and GLSL
 // (core/math/cpu_gpu.h): LightSampler (core/lights/light_sampler.h) on the CPU, the shaders on
-// the GPU. One light is picked in proportion to its power from the distribution's CDF, then a
-// point on it (punctual lights: their position or direction; emissive triangles: uniform by
+// the GPU. One light is picked by the header's sampler (LIGHT_SAMPLER_*: uniformly, in proportion
+// to its power from the distribution's CDF, or for the shading point down the emitter tree,
+// core/lights/emitter_tree.h), then a point on it (punctual lights: their position or direction; emissive triangles: uniform by
 // solid angle where the triangle subtends a large angle from the shading point, uniform by area
 // otherwise); also the pdf of hitting an emissive triangle by BSDF sampling (for MIS) and the
 // start of a light path (sample_emission, for VPLs). What each returns is documented at
@@ -18,6 +19,7 @@
 //   LIGHT_CDF(i)          LightCdfEntry: entry i of the distribution over all lights
 //   LIGHT_EMISSIVE(k)     LightEmissive: emissive triangle k (distribution entry punctual_count + k)
 //   LIGHT_OF_TRIANGLE(t)  uint: the distribution entry of scene triangle t, or LIGHT_NONE
+//   LIGHT_TREE(i)         EmitterNode: node i of the emitter tree (tree and slc samplers)
 //
 // The distribution's CDF was summed in double; each entry holds it as a hi/lo float pair. The pick
 // compares `cdf > u` exactly through the pair, so the light picked for a float u is the one a
@@ -26,6 +28,7 @@
 // core/math/accurate_math.h's asin/atan2/sin/cos, which both backends compute alike.
 #ifndef SST_CORE_LIGHTS_LIGHT_SAMPLE_H
 #define SST_CORE_LIGHTS_LIGHT_SAMPLE_H
+#include "core/lights/emitter_tree.h"
 #include "core/lights/light_layout.h"
 #include "core/math/accurate_math.h"
 #include "core/math/vector_math.h"
@@ -35,7 +38,7 @@
 #include "core/shading/surface_eval.h"
 
 #if !defined(LIGHT_CTX_PARAM) || !defined(LIGHT_CTX) || !defined(LIGHT_HEADER) || !defined(LIGHT_PUNCTUAL) || \
-    !defined(LIGHT_CDF) || !defined(LIGHT_EMISSIVE) || !defined(LIGHT_OF_TRIANGLE)
+    !defined(LIGHT_CDF) || !defined(LIGHT_EMISSIVE) || !defined(LIGHT_OF_TRIANGLE) || !defined(LIGHT_TREE)
 #error "define the LIGHT_* hooks before including core/lights/light_sample.h"
 #endif
 
@@ -112,8 +115,42 @@ SST_FUNC uint light_pick(LIGHT_CTX_PARAM float u, SST_OUT(float) u_remapped) {
   return i;
 }
 
-// The probability that entry i is picked (0 beyond the distribution).
+// The probability that entry i is picked by power (0 beyond the distribution).
 SST_FUNC float light_pmf(LIGHT_CTX_PARAM uint i) { return i < LIGHT_HEADER.distribution_size ? LIGHT_CDF(i).pmf : 0.0f; }
+
+// The header's sampler's pick for shading point p with shading normal n and u in [0, 1): the
+// distribution entry, or LIGHT_NONE when no light can contribute; `pmf` its probability and
+// `u_remapped` u's position within its share of [0, 1).
+SST_FUNC uint light_pick_for(LIGHT_CTX_PARAM vec3 p, vec3 n, float u, SST_OUT(float) pmf, SST_OUT(float) u_remapped) {
+  pmf = 0.0f;
+  u_remapped = 0.0f;
+  uint count = LIGHT_HEADER.distribution_size;
+  if (count == 0u) return LIGHT_NONE;
+  uint kind = LIGHT_HEADER.sampler_kind;
+  if (kind == LIGHT_SAMPLER_TREE || kind == LIGHT_SAMPLER_SLC)
+    return emitter_tree_pick(LIGHT_CTX p, n, u, pmf, u_remapped);
+  if (kind == LIGHT_SAMPLER_UNIFORM) {
+    float x = u * float(count);
+    uint i = min(uint(x), count - 1u);
+    u_remapped = clamp(x - float(i), 0.0f, kOneMinusEpsilon);
+    pmf = 1.0f / float(count);
+    return i;
+  }
+  uint i = light_pick(LIGHT_CTX u, u_remapped);
+  pmf = light_pmf(LIGHT_CTX i);
+  return i;
+}
+
+// The probability that light_pick_for(p, n, u) returns entry i for a uniform u.
+SST_FUNC float light_pick_pmf(LIGHT_CTX_PARAM vec3 p, vec3 n, uint i) {
+  uint count = LIGHT_HEADER.distribution_size;
+  if (i >= count) return 0.0f;
+  uint kind = LIGHT_HEADER.sampler_kind;
+  float pmf = 0.0f;
+  if (kind == LIGHT_SAMPLER_TREE || kind == LIGHT_SAMPLER_SLC) emitter_tree_pmf(LIGHT_CTX p, n, i, pmf);
+  else pmf = kind == LIGHT_SAMPLER_UNIFORM ? 1.0f / float(count) : light_pmf(LIGHT_CTX i);
+  return pmf;
+}
 
 // ---- geometry ----------------------------------------------------------------------------------
 
@@ -211,9 +248,10 @@ SST_FUNC bool light_sample_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint
   return is_finite(s.pdf) && s.pdf > 0.0f;
 }
 
-// A light for shading point p with one 2D sample (u.x picks the light and is reused, remapped,
-// for the point on it). Returns false when no light can contribute.
-SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec2 u, SST_OUT(LightSample) s) {
+// A light for shading point p with shading normal n (0: none; the tree samplers' receiver
+// cosine) with one 2D sample (u.x picks the light and is reused, remapped, for the point on it).
+// Returns false when no light can contribute.
+SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 u, SST_OUT(LightSample) s) {
   s.wi = vec3(0.0f);
   s.distance = 0.0f;
   s.li = vec3(0.0f);
@@ -221,23 +259,24 @@ SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec2 u, SST_O
   s.delta = false;
   s.point = vec3(0.0f);
   s.normal = vec3(0.0f);
-  if (LIGHT_HEADER.distribution_size == 0u) return false;
   float u1;
-  uint index = light_pick(LIGHT_CTX u.x, u1);
-  float pick = light_pmf(LIGHT_CTX index);
+  float pick;
+  uint index = light_pick_for(LIGHT_CTX p, n, u.x, pick, u1);
+  if (index == LIGHT_NONE) return false;
   uint punctual_count = LIGHT_HEADER.punctual_count;
   if (index < punctual_count) return light_sample_punctual(p, LIGHT_PUNCTUAL(index), pick, s);
   return light_sample_triangle(SCENE_CTX LIGHT_CTX p, index - punctual_count, pick, vec2(u1, u.y), s);
 }
 
-// The solid-angle pdf with which light_sample picks the point y (geometric normal ng_light) on
-// triangle `tri` from p; 0 for a triangle that is not a light.
-SST_FUNC float light_pdf_emissive_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint tri, vec3 y, vec3 ng_light) {
+// The solid-angle pdf with which light_sample(p, n, ...) picks the point y (geometric normal
+// ng_light) on triangle `tri`; 0 for a triangle that is not a light.
+SST_FUNC float light_pdf_emissive_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, uint tri, vec3 y, vec3 ng_light) {
   if (tri >= LIGHT_HEADER.triangle_count) return 0.0f;
   uint index = LIGHT_OF_TRIANGLE(tri);
   if (index == LIGHT_NONE) return 0.0f;
   LightEmissive e = LIGHT_EMISSIVE(index - LIGHT_HEADER.punctual_count);
-  float pick = light_pmf(LIGHT_CTX index);
+  float pick = light_pick_pmf(LIGHT_CTX p, n, index);
+  if (!(pick > 0.0f)) return 0.0f;
   vec3 v0;
   vec3 v1;
   vec3 v2;

@@ -1,5 +1,10 @@
 #include "core/lights/light_sampler.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "core/util/error.h"
+
 namespace sst {
 namespace {
 // Luminance of a texture's mean, so a textured emitter's power estimate reflects its pattern.
@@ -43,36 +48,108 @@ glsl::LightCdfEntry cdf_entry(double cdf, float pmf) {
   e.cdf_hi = float(cdf);
   e.cdf_lo = float(cdf - double(e.cdf_hi));
   e.pmf = pmf;
-  e.reserved = 0u;
+  e.tree_node = LIGHT_NONE;
   return e;
 }
+
+// The emitter tree's leaf for a punctual light (EmitterNode, core/lights/light_layout.h): a point
+// light emits every way (theta_o = pi, theta_e = pi/2, as pbrt-v4); a spot light at full
+// strength within its inner cone and nothing beyond the outer one (theta_o = inner, theta_o +
+// theta_e = outer); a directional light is kept beside the tree with its irradiance.
+glsl::EmitterNode punctual_leaf(const PunctualLight& light) {
+  glsl::EmitterNode n{};
+  n.lo = light.position;
+  n.hi = light.position;
+  n.intensity = luminance(light.intensity);
+  n.axis = vec3(0.0f, 0.0f, 1.0f);
+  n.cos_o = -1.0f;
+  n.cos_e = 0.0f;
+  n.entry = LIGHT_NONE;
+  if (light.type == LightType::Spot) {
+    n.axis = light.direction;
+    double inner = std::acos(std::clamp(double(light.cos_inner), -1.0, 1.0));
+    double outer = std::acos(std::clamp(double(light.cos_outer), -1.0, 1.0));
+    n.cos_o = float(std::cos(std::min(inner, outer)));
+    n.cos_e = float(std::cos(std::max(0.0, outer - inner) + kConeSlack));
+  } else if (light.type == LightType::Directional) {
+    n.lo = n.hi = vec3(0.0f);
+    n.axis = light.direction;
+    n.flags = EMITTER_DIRECTIONAL;
+  }
+  return n;
+}
+
+// The leaf of an emissive triangle: its box, its normal (the front side's: triangle_emission
+// emits from the back only for a double-sided material), Le A for intensity.
+glsl::EmitterNode triangle_leaf(const Scene& scene, uint32_t t, float mean_radiance, bool double_sided, float area) {
+  glsl::EmitterNode n{};
+  vec3 v0, v1, v2;
+  light_triangle_vertices(scene, t, v0, v1, v2);
+  n.lo = glm::min(v0, glm::min(v1, v2));
+  n.hi = glm::max(v0, glm::max(v1, v2));
+  n.intensity = mean_radiance * area;
+  n.axis = triangle_geometric_normal(scene, t);
+  n.cos_o = 1.0f;
+  n.cos_e = 0.0f;
+  n.flags = double_sided ? EMITTER_TWO_SIDED : 0u;
+  n.entry = LIGHT_NONE;
+  return n;
+}
 }  // namespace
+
+const char* light_sampler_names() { return "uniform, power, tree, slc"; }
+
+const char* light_sampler_name(LightSamplerKind kind) {
+  switch (kind) {
+    case LightSamplerKind::Uniform: return "uniform";
+    case LightSamplerKind::Power: return "power";
+    case LightSamplerKind::Tree: return "tree";
+    case LightSamplerKind::Slc: return "slc";
+  }
+  return "power";
+}
+
+LightSamplerKind parse_light_sampler(const std::string& name) {
+  for (LightSamplerKind k : {LightSamplerKind::Uniform, LightSamplerKind::Power, LightSamplerKind::Tree, LightSamplerKind::Slc})
+    if (name == light_sampler_name(k)) return k;
+  throw Error("unknown light sampler '" + name + "' (valid: " + light_sampler_names() + ")");
+}
 
 size_t PackedLights::bytes() const {
   return sizeof header + punctual.size() * sizeof(glsl::LightPunctual) +
          distribution.size() * sizeof(glsl::LightCdfEntry) + emissive.size() * sizeof(glsl::LightEmissive) +
-         light_of_triangle.size() * sizeof(uint32_t);
+         light_of_triangle.size() * sizeof(uint32_t) + tree.size() * sizeof(glsl::EmitterNode);
 }
 
-LightSampler::LightSampler(const Scene& scene) : scene_(&scene) {
+LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&scene), kind_(kind) {
+  const bool tree = kind == LightSamplerKind::Tree || kind == LightSamplerKind::Slc;
   std::vector<double> weights;
-  for (const PunctualLight& light : scene.lights) weights.push_back(punctual_power(light, scene.bounds));
+  std::vector<glsl::EmitterNode> leaves;
+  for (const PunctualLight& light : scene.lights) {
+    weights.push_back(punctual_power(light, scene.bounds));
+    if (tree) leaves.push_back(punctual_leaf(light));
+  }
+  // Per material: the luminance of its mean emitted radiance, and the power per unit area.
+  std::vector<float> material_radiance(scene.materials.size(), 0.0f);
   std::vector<float> material_scale(scene.materials.size(), 0.0f);
   for (size_t m = 0; m < scene.materials.size(); ++m) {
     const Material& mat = scene.materials[m];
     float tex = mat.emissive_texture >= 0 && size_t(mat.emissive_texture) < scene.textures.size()
                     ? mean_luminance(scene.textures[mat.emissive_texture])
                     : 1.0f;
-    material_scale[m] = luminance(mat.emission) * tex * kPi * (mat.double_sided ? 2.0f : 1.0f);
+    material_radiance[m] = luminance(mat.emission) * tex;
+    material_scale[m] = material_radiance[m] * kPi * (mat.double_sided ? 2.0f : 1.0f);
   }
   packed_.light_of_triangle.assign(scene.triangles.size(), LIGHT_NONE);
   for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
-    float scale = material_scale[scene.triangle_material[t]];
+    uint32_t m = scene.triangle_material[t];
+    float scale = material_scale[m];
     if (!(scale > 0.0f)) continue;
     float area = triangle_area(scene, t);
     if (!(area > 0.0f)) continue;
     packed_.light_of_triangle[t] = uint32_t(weights.size());
     weights.push_back(double(area) * scale);
+    if (tree) leaves.push_back(triangle_leaf(scene, t, material_radiance[m], scene.materials[m].double_sided, area));
     glsl::LightEmissive e{};
     e.triangle = t;
     e.area = area;
@@ -88,6 +165,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(&scene) {
   h.triangle_count = uint32_t(scene.triangles.size());
   h.bounds_center = scene.bounds.center();
   h.bounds_radius = 0.5f * scene.bounds.diagonal();
+  h.sampler_kind = uint32_t(kind);
   packed_.punctual.reserve(scene.lights.size());
   for (const PunctualLight& l : scene.lights) {
     glsl::LightPunctual p{};
@@ -103,6 +181,13 @@ LightSampler::LightSampler(const Scene& scene) : scene_(&scene) {
     packed_.distribution.reserve(distribution_.size());
     for (size_t i = 0; i < distribution_.size(); ++i)
       packed_.distribution.push_back(cdf_entry(distribution_.cdf()[i], distribution_.pmfs()[i]));
+  }
+  if (tree && !distribution_.empty()) {
+    EmitterTree built = build_emitter_tree(leaves);
+    h.tree_leaves = built.leaves;
+    h.directional_count = built.directional_count;
+    for (size_t i = 0; i < packed_.distribution.size(); ++i) packed_.distribution[i].tree_node = built.node_of_entry[i];
+    packed_.tree = std::move(built.nodes);
   }
 }
 

@@ -1,6 +1,7 @@
 // Direct-light sampling over every light of a scene: punctual lights (point, spot, directional)
-// and emissive triangles, one light picked in proportion to its power (METHODS.md §0), then a
-// point on it: uniform by solid angle for a triangle that subtends a large angle from the
+// and emissive triangles, one light picked by the chosen LightSamplerKind (uniformly, in
+// proportion to its power as METHODS.md §0 has it, or for the shading point down the emitter
+// tree, core/lights/emitter_tree.h), then a point on it: uniform by solid angle for a triangle that subtends a large angle from the
 // shading point, uniform by area otherwise. Also answers the pdf of hitting an emissive
 // triangle by BSDF sampling, for multiple importance sampling. Also samples where light leaves
 // the lights (`sample_emission`), for light paths: instant radiosity's VPLs (METHODS.md §1).
@@ -11,6 +12,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <string>
+
+#include "core/lights/emitter_tree_build.h"
 #include "core/lights/light_layout.h"
 #include "core/math/math.h"
 #include "core/sampling/discrete_distribution.h"
@@ -27,9 +31,23 @@ struct PackedLights {
   std::vector<glsl::LightCdfEntry> distribution;   // over all lights (empty when no light emits)
   std::vector<glsl::LightEmissive> emissive;       // the emissive triangles
   std::vector<uint32_t> light_of_triangle;         // per scene triangle; LIGHT_NONE if no light
+  std::vector<glsl::EmitterNode> tree;             // the emitter tree (tree and slc samplers)
 
   size_t bytes() const;
 };
+
+// How a light is picked for a shading point (RenderOptions::light_sampler; LIGHT_SAMPLER_*).
+enum class LightSamplerKind : uint32_t {
+  Uniform = LIGHT_SAMPLER_UNIFORM,
+  Power = LIGHT_SAMPLER_POWER,
+  Tree = LIGHT_SAMPLER_TREE,
+  Slc = LIGHT_SAMPLER_SLC,
+};
+// "uniform, power, tree, slc", for help and errors.
+const char* light_sampler_names();
+const char* light_sampler_name(LightSamplerKind kind);
+// Throws sst::Error naming the valid values for an unknown name.
+LightSamplerKind parse_light_sampler(const std::string& name);
 
 }  // namespace sst
 
@@ -40,6 +58,7 @@ struct PackedLights {
 #define LIGHT_CDF(i) lights.distribution[i]
 #define LIGHT_EMISSIVE(k) lights.emissive[k]
 #define LIGHT_OF_TRIANGLE(t) lights.light_of_triangle[t]
+#define LIGHT_TREE(i) lights.tree[i]
 #include "core/lights/light_sample.h"
 
 namespace sst {
@@ -47,19 +66,30 @@ namespace sst {
 class LightSampler {
  public:
   LightSampler() = default;
-  explicit LightSampler(const Scene& scene);
+  explicit LightSampler(const Scene& scene, LightSamplerKind kind = LightSamplerKind::Power);
 
   bool empty() const { return distribution_.empty(); }
   size_t light_count() const { return distribution_.size(); }
   size_t emissive_triangle_count() const { return packed_.emissive.size(); }
 
-  // Samples a light for shading point p with one 2D sample (u.x picks the light and is reused,
-  // remapped, for the point on it). Returns false when no light can contribute.
-  bool sample(vec3 p, vec2 u, LightSample& out) const { return scene_ && light_sample(*scene_, packed_, p, u, out); }
-  // Solid-angle pdf that `sample` would pick the point y on emissive triangle `tri` from p
+  LightSamplerKind kind() const { return kind_; }
+
+  // Samples a light for shading point p with shading normal n (0: none) with one 2D sample (u.x
+  // picks the light and is reused, remapped, for the point on it). Returns false when no light
+  // can contribute. LightSample::pdf includes the pick's probability.
+  bool sample(vec3 p, vec3 n, vec2 u, LightSample& out) const {
+    return scene_ && light_sample(*scene_, packed_, p, n, u, out);
+  }
+  // Solid-angle pdf that `sample(p, n, ...)` would pick the point y on emissive triangle `tri`
   // (0 for a triangle that is not a light).
-  float pdf_emissive_hit(vec3 p, uint32_t tri, vec3 y, vec3 ng_light) const {
-    return scene_ ? light_pdf_emissive_hit(*scene_, packed_, p, tri, y, ng_light) : 0.0f;
+  float pdf_emissive_hit(vec3 p, vec3 n, uint32_t tri, vec3 y, vec3 ng_light) const {
+    return scene_ ? light_pdf_emissive_hit(*scene_, packed_, p, n, tri, y, ng_light) : 0.0f;
+  }
+  // The probability that `sample(p, n, ...)` picks distribution entry `light` (pbrt-v4's
+  // LightSampler::PMF(ctx, light)); the pick itself, for tests.
+  float pmf(vec3 p, vec3 n, uint32_t light) const { return light_pick_pmf(packed_, p, n, light); }
+  uint32_t pick(vec3 p, vec3 n, float u, float& pmf, float& u_remapped) const {
+    return light_pick_for(packed_, p, n, u, pmf, u_remapped);
   }
 
   // Samples the start of a light path: a light picked with u_pick in proportion to its power
@@ -89,6 +119,7 @@ class LightSampler {
 
  private:
   const Scene* scene_ = nullptr;
+  LightSamplerKind kind_ = LightSamplerKind::Power;
   DiscreteDistribution distribution_;  // over punctual lights first, then emissive triangles
   PackedLights packed_;
 };

@@ -40,19 +40,6 @@ bool vpl_ok(const Vpl& v) {
 
 }  // namespace
 
-MortonGrid MortonGrid::over(const Bounds3& bounds) {
-  MortonGrid grid;
-  if (bounds.empty()) return grid;
-  grid.origin = bounds.lo;
-  vec3 extent = bounds.hi - bounds.lo;
-  for (int axis = 0; axis < 3; ++axis) {
-    float s = extent[axis] > 0.0f ? 1024.0f / extent[axis] : 0.0f;
-    // A denormal extent would overflow the scale; such an axis counts as degenerate.
-    grid.scale[axis] = std::isfinite(s) ? s : 0.0f;
-  }
-  return grid;
-}
-
 vec3 decode_normal(uint32_t code) {
   float a = 1.0f / 3.0f, b = 1.0f / 3.0f, c = 1.0f / 3.0f;
   for (int level = 0; level < kNormalSubdivisionLevels; ++level) undivide((code >> (2 * level)) & 3u, a, b, c);

@@ -23,6 +23,7 @@
 // for the GPU build too).
 #ifndef SST_CORE_LIGHTTREE_SORT_KEY_H
 #define SST_CORE_LIGHTTREE_SORT_KEY_H
+#include "core/math/morton.h"
 #include "core/math/vector_math.h"
 
 SST_BEGIN
@@ -33,37 +34,6 @@ SST_CONSTANT int kIdBits = 64 - kMortonBits - kNormalCodeBits;  // 25
 SST_CONSTANT int kNormalCodeCount = 1 << kNormalCodeBits;       // 512
 // Levels of the 4-way subdivision of an octant's triangle in the normal code.
 SST_CONSTANT int kNormalSubdivisionLevels = 3;
-
-// Spreads the low 10 bits of x so that two zero bits follow each one.
-SST_FUNC uint expand_bits_10(uint x) {
-  x &= 0x3FFu;
-  x = (x * 0x00010001u) & 0xFF0000FFu;
-  x = (x * 0x00000101u) & 0x0F00F00Fu;
-  x = (x * 0x00000011u) & 0xC30C30C3u;
-  x = (x * 0x00000005u) & 0x49249249u;
-  return x;
-}
-
-// 30-bit Morton code of a point whose coordinates are already quantised to [0, 1023].
-SST_FUNC uint morton_code(uint x, uint y, uint z) {
-  return (expand_bits_10(x) << 2u) | (expand_bits_10(y) << 1u) | expand_bits_10(z);
-}
-
-// The grid cell of coordinate p along one axis: min(max((p - origin) * scale, 0), 1023),
-// truncated. Never NaN: VPL positions are checked finite and the grid's scale is finite.
-SST_FUNC uint quantize_axis(float p, float origin, float scale) {
-  SST_PRECISE float cell = (p - origin) * scale;
-  cell = cell < 0.0f ? 0.0f : cell;
-  cell = 1023.0f < cell ? 1023.0f : cell;
-  return uint(cell);
-}
-
-// Morton code of position p on the 1024^3 grid with corner `origin` and `scale` cells per unit
-// length (MortonGrid).
-SST_FUNC uint grid_morton_code(vec3 p, vec3 origin, vec3 scale) {
-  return morton_code(quantize_axis(p.x, origin.x, scale.x), quantize_axis(p.y, origin.y, scale.y),
-                     quantize_axis(p.z, origin.z, scale.z));
-}
 
 // 9-bit code of a direction (need not be unit; a zero vector gets the +x+y+z octant's centre
 // cell). quantize_normal(decode_normal(c)) == c for every code c.
@@ -133,14 +103,6 @@ namespace sst {
 inline constexpr uint64_t kMaxSortKeyVpls = uint64_t(1) << kIdBits;
 
 inline uint64_t sort_key_from_words(uvec2 key) { return (uint64_t(key.y) << 32) | key.x; }
-
-// Quantises positions to the 1024^3 grid over `bounds` (the VPL bounding box).
-struct MortonGrid {
-  vec3 origin{0.0f};
-  vec3 scale{0.0f};  // cells per unit length; 0 along an axis without extent
-  static MortonGrid over(const Bounds3& bounds);
-  uint32_t code(vec3 p) const { return grid_morton_code(p, origin, scale); }
-};
 
 // The unit direction at the centre (centroid of the triangle cell) of code `code` < 512.
 vec3 decode_normal(uint32_t code);

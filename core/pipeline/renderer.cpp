@@ -63,7 +63,9 @@ FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   check_coordinates(scene);  // before Embree sees a vertex it cannot bound
   accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel == "flat"); });
-  lights_ = timer.time("light_setup", [&] { return std::make_unique<LightSampler>(scene); });
+  lights_ = timer.time("light_setup", [&] {
+    return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler));
+  });
 #ifdef SST_HAVE_VULKAN
   if (options_.backend == "vulkan") {
     // The method's Vulkan side renders with both the CPU structures above (VPL methods build some

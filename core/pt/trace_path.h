@@ -55,7 +55,7 @@ SST_FUNC PathCounters path_counters() {
 SST_FUNC vec3 sample_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN(Surface) s, SST_IN(Brdf) brdf,
                             SST_IN(Basis) basis, vec3 wo, vec2 u, SST_INOUT(PathCounters) counters) {
   LightSample ls;
-  if (!light_sample(SCENE_CTX LIGHT_CTX s.p, u, ls)) return vec3(0.0f);
+  if (!light_sample(SCENE_CTX LIGHT_CTX s.p, s.ns, u, ls)) return vec3(0.0f);
   // Light from behind the geometric surface would leak through it: nothing is transmitted.
   if (dot3(ls.wi, s.ng) <= 0.0f) return vec3(0.0f);
   vec3 wi = to_local(basis, ls.wi);
@@ -75,6 +75,15 @@ SST_FUNC vec3 sample_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN
   if (RAY_OCCLUDED(origin, dir, tmax)) return vec3(0.0f);
   float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, brdf_pdf(brdf, wo, wi));
   SST_PRECISE vec3 r = f * wi.z * ls.li * (weight / ls.pdf);
+  return r;
+}
+
+// a * b, never contracted into the addition it feeds. A helper rather than precise variables in
+// trace_path: glslang traces a precise variable back through every call argument and
+// loop-carried value that feeds it, which in trace_path's loop took it minutes and gigabytes
+// (and whether it did changed with unrelated edits); here the trace ends at the parameters.
+SST_FUNC vec3 product_exact(vec3 a, vec3 b) {
+  SST_PRECISE vec3 r = a * b;
   return r;
 }
 
@@ -118,8 +127,7 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
   hit = true;
   result.albedo = s.base_color;
   result.normal = s.ns;
-  SST_PRECISE float depth = h.t * length3(dir);
-  result.depth = depth;
+  result.depth = h.t * length3(dir);
   result.direct = s.emission;
 
   vec3 beta = vec3(1.0f);
@@ -136,7 +144,7 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
     vec2 u_light = pixel_sampler_get2d(ps);
     vec2 u_brdf = pixel_sampler_get2d(ps);
     float u_roulette = pixel_sampler_get1d(ps);
-    SST_PRECISE vec3 direct = beta * sample_direct(SCENE_CTX LIGHT_CTX RAY_CTX s, brdf, basis, wo, u_light, counters);
+    vec3 direct = product_exact(beta, sample_direct(SCENE_CTX LIGHT_CTX RAY_CTX s, brdf, basis, wo, u_light, counters));
     if (k == 1) result.direct += direct;
     else result.indirect += direct;
 
@@ -150,11 +158,11 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
     counters.bounce_rays += 1u;
     BvhHit next = RAY_INTERSECT(origin, dir);
     if (next.triangle >= BVH_STACK_OVERFLOW) break;  // black world
-    SST_PRECISE vec3 beta_next = beta * bs.weight;
+    vec3 beta_next = beta * bs.weight;
     Surface ns = make_surface(SCENE_CTX next.triangle, vec2(next.u, next.v), dir);
     if (max_component(ns.emission) > 0.0f) {
-      float light_pdf = light_pdf_emissive_hit(SCENE_CTX LIGHT_CTX s.p, next.triangle, ns.p, ns.ng);
-      SST_PRECISE vec3 emitted = beta_next * ns.emission * power_heuristic(bs.pdf, light_pdf);
+      float light_pdf = light_pdf_emissive_hit(SCENE_CTX LIGHT_CTX s.p, s.ns, next.triangle, ns.p, ns.ng);
+      vec3 emitted = product_exact(beta_next * ns.emission, vec3(power_heuristic(bs.pdf, light_pdf)));
       if (k == 1) result.direct += emitted;
       else result.indirect += emitted;
     }
@@ -166,8 +174,7 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
     if (k > rr_min_bounces && k <= max_bounces) {
       float survive = min(1.0f, max_component(beta));
       if (u_roulette >= survive) break;
-      SST_PRECISE vec3 b = beta / survive;
-      beta = b;
+      beta = beta / survive;
     }
   }
   return result;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/lights/light_sampler.h"
 #include "core/util/machine_info.h"
 
 #include "core/util/error.h"
@@ -30,6 +31,7 @@ void validate(const RenderOptions& o) {
   }
   if (o.spp < 1) throw Error("spp must be >= 1 (got " + std::to_string(o.spp) + ")");
   if (o.device < 0) throw Error("device must be >= 0 (got " + std::to_string(o.device) + ")");
+  parse_light_sampler(o.light_sampler);  // throws for an unknown name
   if (o.accel != "embree" && o.accel != "flat")
     throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
   if (o.threads < 0 || o.threads > kMaxThreads)

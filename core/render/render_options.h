@@ -19,6 +19,7 @@ struct RenderOptions {
   int spp = 16;
   uint32_t seed = 0;
   bool diffuse_only = false;
+  std::string light_sampler = "power";  // core/lights/light_sampler.h: uniform, power, tree, slc
   std::string camera;  // name or index; "" = the first
   int threads = 0;     // 0 = all hardware threads
   float exposure = 0.0f;  // stops, applied when writing PNG only
@@ -45,6 +46,10 @@ struct RenderOptions {
     v("spp", spp, "samples per pixel (pt: camera paths; many-light methods: indirect samples)");
     v("seed", seed, "random seed; the same seed gives the same image bits");
     v("diffuse_only", diffuse_only, "replace every material by Lambert baseColor/pi (+ its emission)");
+    v("light_sampler", light_sampler,
+      "how direct light (pt's next-event estimation, every method's direct pass, GI-1.0's cache) picks a light "
+      "for a shading point: uniform, power (in proportion to power), tree (down a light tree by pbrt-v4's "
+      "importance) or slc (the same tree, Yuksel's weights); light paths (VPLs) always start by power");
     v("camera", camera, "camera name or index (default: the first)");
     v("threads", threads, "CPU threads (0: all)");
     v("exposure", exposure, "exposure in stops for PNG output");

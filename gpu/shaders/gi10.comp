@@ -4,8 +4,8 @@
 // GI-1.0 on the GPU: the stages of core/gi10/gi10_stages.h, one invocation per element, as the
 // CPU's loops run them. Compiled once per stage (gi10_<GI10_STAGE_*>, gpu/CMakeLists.txt): in one
 // pipeline for all, llvmpipe paid every stage's local arrays in each invocation (7 us each).
-// Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..11 lights
-// (LIGHT_BUFFERS), 12 the frame's Gi10Frame, 13..27 GI-1.0's buffers in the order of
+// Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
+// (LIGHT_BUFFERS), 13 the frame's Gi10Frame, 14..28 GI-1.0's buffers in the order of
 // gpu/gi10_vulkan.cpp (pixels, emission, mask, radiance, sh, spawn, rays, hash, values, accum,
 // denoise, aux, feedback, counters, output). Push constants: Gi10Push.
 #include "core/scene/scene_layout.h"
@@ -16,22 +16,22 @@ SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
 LIGHT_BUFFERS(7)
-layout(std430, binding = 12) readonly buffer FrameConstants { Gi10Frame gi_frame_constants; };
-layout(std430, binding = 13) buffer Pixels { Gi10Pixel gi_pixels_buffer[]; };
-layout(std430, binding = 14) buffer Emission { vec4 gi_emission_buffer[]; };
-layout(std430, binding = 15) buffer Mask { uint gi_mask_buffer[]; };
-layout(std430, binding = 16) buffer Radiance { vec4 gi_radiance_buffer[]; };
-layout(std430, binding = 17) buffer Sh { vec4 gi_sh_buffer[]; };
-layout(std430, binding = 18) buffer Spawn { uint gi_spawn_buffer[]; };
-layout(std430, binding = 19) buffer Rays { Gi10Ray gi_rays_buffer[]; };
-layout(std430, binding = 20) buffer Hash { uint gi_hash_buffer[]; };
-layout(std430, binding = 21) buffer Values { vec4 gi_values_buffer[]; };
-layout(std430, binding = 22) buffer Accum { uint gi_accum_buffer[]; };
-layout(std430, binding = 23) buffer Denoise { vec4 gi_denoise_buffer[]; };
-layout(std430, binding = 24) buffer Aux { vec4 gi_aux_buffer[]; };
-layout(std430, binding = 25) buffer Feedback { vec4 gi_feedback_buffer[]; };
-layout(std430, binding = 26) buffer Counters { uint gi_counters_buffer[]; };
-layout(std430, binding = 27) buffer Output { vec4 gi_output_buffer[]; };
+layout(std430, binding = 13) readonly buffer FrameConstants { Gi10Frame gi_frame_constants; };
+layout(std430, binding = 14) buffer Pixels { Gi10Pixel gi_pixels_buffer[]; };
+layout(std430, binding = 15) buffer Emission { vec4 gi_emission_buffer[]; };
+layout(std430, binding = 16) buffer Mask { uint gi_mask_buffer[]; };
+layout(std430, binding = 17) buffer Radiance { vec4 gi_radiance_buffer[]; };
+layout(std430, binding = 18) buffer Sh { vec4 gi_sh_buffer[]; };
+layout(std430, binding = 19) buffer Spawn { uint gi_spawn_buffer[]; };
+layout(std430, binding = 20) buffer Rays { Gi10Ray gi_rays_buffer[]; };
+layout(std430, binding = 21) buffer Hash { uint gi_hash_buffer[]; };
+layout(std430, binding = 22) buffer Values { vec4 gi_values_buffer[]; };
+layout(std430, binding = 23) buffer Accum { uint gi_accum_buffer[]; };
+layout(std430, binding = 24) buffer Denoise { vec4 gi_denoise_buffer[]; };
+layout(std430, binding = 25) buffer Aux { vec4 gi_aux_buffer[]; };
+layout(std430, binding = 26) buffer Feedback { vec4 gi_feedback_buffer[]; };
+layout(std430, binding = 27) buffer Counters { uint gi_counters_buffer[]; };
+layout(std430, binding = 28) buffer Output { vec4 gi_output_buffer[]; };
 layout(push_constant) uniform Push { Gi10Push push; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]

@@ -1,6 +1,6 @@
 // The hooks of the shared light sampling (core/lights/light_sample.h) bound to the light buffers,
 // and the sampling itself: light_sample, light_pdf_emissive_hit, light_sample_emission,
-// light_pick. The including shader declares the scene and light buffers first, e.g.
+// light_pick, light_pick_for, light_pick_pmf. The including shader declares the scene and light buffers first, e.g.
 //   #include "core/scene/scene_layout.h"
 //   #include "core/lights/light_layout.h"
 //   SCENE_BUFFERS(0)
@@ -17,6 +17,7 @@
 #define LIGHT_CDF(i) light_distribution[i]
 #define LIGHT_EMISSIVE(k) light_emissive[k]
 #define LIGHT_OF_TRIANGLE(t) light_of_triangle[t]
+#define LIGHT_TREE(i) light_tree[i]
 #include "core/lights/light_sample.h"
 
 #endif  // SST_GPU_SHADERS_LIGHT_SAMPLER_GLSL

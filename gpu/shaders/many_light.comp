@@ -9,9 +9,9 @@
 // pixel's ManyLightTexel. A frame is rendered in dispatches of consecutive sample indices
 // [sample_offset, sample_offset + spp); the first overwrites the texels, the rest add to them.
 // On lavapipe an exhaustive sum may be split further into slices of VPLs (ManyLightPush).
-// Bindings: 0..4 scene, 5..6 BVH, 7..11 lights, 12..18 the sampler's inputs (MANY_LIGHT_BUFFERS),
-// 19 the texels, 20 the dispatch's words (ML_DISPATCH_*: the traversal-depth histogram, 65 bins,
-// the last one "64 or more", then its counters), 21 and 22 the slices' running sums in and out.
+// Bindings: 0..4 scene, 5..6 BVH, 7..12 lights, 13..19 the sampler's inputs (MANY_LIGHT_BUFFERS),
+// 20 the texels, 21 the dispatch's words (ML_DISPATCH_*: the traversal-depth histogram, 65 bins,
+// the last one "64 or more", then its counters), 22 and 23 the slices' running sums in and out.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
@@ -21,13 +21,13 @@ SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
 LIGHT_BUFFERS(7)
-MANY_LIGHT_BUFFERS(12)
-layout(std430, binding = 19) buffer Texels { ManyLightTexel texels[]; };
-layout(std430, binding = 20) buffer DispatchWords { uint dispatch_words[]; };
+MANY_LIGHT_BUFFERS(13)
+layout(std430, binding = 20) buffer Texels { ManyLightTexel texels[]; };
+layout(std430, binding = 21) buffer DispatchWords { uint dispatch_words[]; };
 // Two buffers, swapped after each slice: reading and writing one buffer would make glslang's
 // `precise` propagation cycle through it and exhaust memory.
-layout(std430, binding = 21) readonly buffer SlicesIn { ManyLightSlice slices_in[]; };
-layout(std430, binding = 22) writeonly buffer SlicesOut { ManyLightSlice slices_out[]; };
+layout(std430, binding = 22) readonly buffer SlicesIn { ManyLightSlice slices_in[]; };
+layout(std430, binding = 23) writeonly buffer SlicesOut { ManyLightSlice slices_out[]; };
 layout(push_constant) uniform Push { ManyLightPush push; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]

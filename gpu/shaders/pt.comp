@@ -7,8 +7,8 @@
 // dispatches of consecutive sample indices [sample_offset, sample_offset + spp); the first
 // (sample_offset 0) overwrites the texels, the rest add to them, so the sums are the CPU's, in
 // the CPU's order. The host divides by the frame's spp (gpu/path_trace_pass.cpp).
-// Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..11 lights
-// (LIGHT_BUFFERS), 12 PathTraceTexel per pixel. Push constants: PathTraceParams.
+// Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
+// (LIGHT_BUFFERS), 13 PathTraceTexel per pixel. Push constants: PathTraceParams.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
@@ -17,7 +17,7 @@ SCENE_BUFFERS(0)
 layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
 layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
 LIGHT_BUFFERS(7)
-layout(std430, binding = 12) buffer Texels { PathTraceTexel texels[]; };
+layout(std430, binding = 13) buffer Texels { PathTraceTexel texels[]; };
 layout(push_constant) uniform Push { PathTraceParams params; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]

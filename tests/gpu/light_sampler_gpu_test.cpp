@@ -129,6 +129,7 @@ struct Query {
   float u_pick = 0.0f;
   vec3 ng;
   vec2 u, u_pos, u_dir;
+  vec3 n;                // the shading normal (0 for a point in space)
   bool on_step = false;  // u.x = u_pick on (or one float beside) a cdf step
 };
 
@@ -140,6 +141,9 @@ struct GpuAnswer {
   EmissionSample e;
   uint32_t pick = 0;
   float remapped = 0.0f;
+  uint32_t sampler_pick = 0;  // light_pick_for(p, n, u_pick)
+  float sampler_pmf = 0.0f;   // its pmf
+  float picked_pmf = 0.0f;    // light_pick_pmf(p, n, sampler_pick)
 };
 
 std::vector<GpuAnswer> run_on_gpu(const Scene& scene, const LightSampler& lights, const std::vector<Query>& queries,
@@ -148,14 +152,15 @@ std::vector<GpuAnswer> run_on_gpu(const Scene& scene, const LightSampler& lights
   GpuScene gpu_scene(context, scene);
   GpuLights gpu_lights(context, scene, lights);
   const uint32_t count = uint32_t(queries.size());
-  std::vector<uint32_t> in(size_t(count) * 20, 0u);
+  std::vector<uint32_t> in(size_t(count) * 24, 0u);
   for (uint32_t i = 0; i < count; ++i) {
     const Query& q = queries[i];
-    uint32_t* w = &in[size_t(i) * 20];
+    uint32_t* w = &in[size_t(i) * 24];
     for (int c = 0; c < 3; ++c) {
       w[c] = bits(q.p[c]);
       w[4 + c] = bits(q.y[c]);
       w[8 + c] = bits(q.ng[c]);
+      w[20 + c] = bits(q.n[c]);
     }
     w[3] = q.tri;
     w[7] = bits(q.u_pick);
@@ -199,6 +204,9 @@ std::vector<GpuAnswer> run_on_gpu(const Scene& scene, const LightSampler& lights
     a.e.light = r[30];
     a.pick = r[31];
     a.remapped = from_bits(r[32]);
+    a.sampler_pick = r[33];
+    a.sampler_pmf = from_bits(r[34]);
+    a.picked_pmf = from_bits(r[35]);
   }
   return answers;
 }
@@ -223,15 +231,19 @@ std::vector<Query> make_queries(const Scene& scene, const LightSampler& lights, 
   for (size_t i = 0; i < count; ++i) {
     Query& q = queries[i];
     const int kind = int(i % 3);
+    q.n = vec3(0.0f);
     if (kind == 0 || (kind == 2 && emissive.empty())) {
       q.p = lo + extent * vec3(uniform(rng), uniform(rng), uniform(rng));
+      if (rng() & 1u) q.n = glm::normalize(vec3(uniform(rng), uniform(rng), uniform(rng)) - 0.5f);
     } else {
       const uint32_t tri = kind == 1 ? uint32_t(rng() % scene.triangles.size()) : emissive[rng() % emissive.size()];
       float su = std::sqrt(uniform(rng));
       vec3 on = triangle_point(scene, tri, vec2(1.0f - su, uniform(rng) * su));
       float size = std::sqrt(triangle_area(scene, tri));
       float lift = kind == 1 ? 1e-3f * scene.bounds.diagonal() : size * (0.02f + 2.0f * uniform(rng));
-      q.p = on + triangle_geometric_normal(scene, tri) * (uniform(rng) < 0.5f ? lift : -lift);
+      const float side = uniform(rng) < 0.5f ? 1.0f : -1.0f;
+      q.p = on + triangle_geometric_normal(scene, tri) * (side * lift);
+      q.n = triangle_geometric_normal(scene, tri) * side;
     }
     const bool emissive_hit = !emissive.empty() && (rng() & 1u);
     q.tri = emissive_hit ? emissive[rng() % emissive.size()] : uint32_t(rng() % scene.triangles.size());
@@ -296,6 +308,11 @@ vec3 spherical_point_in_double(vec3 pf, vec3 v0f, vec3 v1f, vec3 v2f, vec2 u) {
 // What the comparison found; the test asserts on it.
 struct Agreement {
   size_t count = 0, ok_mismatch = 0, pick_mismatch = 0, remap_mismatch = 0, emission_mismatch = 0;
+  // The sampler's pick for (p, n): lights picked differently, and the largest relative difference
+  // of the pmf (the pick's and light_pick_pmf's) where they agree; how often the CPU's pick's pmf
+  // and light_pick_pmf differ at all (they must not: the same products in the same order).
+  size_t sampler_pick_mismatch = 0, sampler_pmf_self_mismatch = 0;
+  double sampler_pmf_rel = 0.0;
   size_t spherical = 0, area = 0, punctual = 0, emitted = 0;
   int64_t exact_ulps = 0;          // punctual and area-sampled light samples, hit pdfs by area
   double spherical_rel = 0.0;      // solid-angle samples' pdf and radiance, and hit pdfs
@@ -333,12 +350,23 @@ Agreement compare(const Scene& scene, const LightSampler& lights, size_t count, 
     if (pick != g.pick) ++a.pick_mismatch, report(i, "pick");
     if (bits(remapped) != bits(g.remapped)) ++a.remap_mismatch, report(i, "remapped u");
 
+    // The sampler's pick (the power sampler's is the pick above).
+    float sampler_pmf = 0.0f, sampler_u = 0.0f;
+    const uint32_t sampler_pick = lights.pick(q.p, q.n, q.u_pick, sampler_pmf, sampler_u);
+    if (sampler_pick != g.sampler_pick) {
+      ++a.sampler_pick_mismatch;
+    } else if (sampler_pick != LIGHT_NONE) {
+      a.sampler_pmf_rel = std::max({a.sampler_pmf_rel, rel1(g.sampler_pmf, sampler_pmf), rel1(g.picked_pmf, sampler_pmf)});
+      if (lights.pmf(q.p, q.n, sampler_pick) != sampler_pmf) ++a.sampler_pmf_self_mismatch;
+    }
+
     // LightSampler::sample.
     LightSample s;
-    const bool ok = lights.sample(q.p, q.u, s);
-    uint32_t index = dist.empty() ? 0u : dist.sample(q.u.x);
+    const bool ok = lights.sample(q.p, q.n, q.u, s);
+    float u1 = 0.0f, pick_pmf = 0.0f;
+    uint32_t index = dist.empty() ? 0u : lights.pick(q.p, q.n, q.u.x, pick_pmf, u1);
     bool spherical = false;
-    if (!dist.empty() && index >= punctual) {
+    if (!dist.empty() && index != LIGHT_NONE && index >= punctual) {
       const uvec3& t = scene.triangles[lights.packed().emissive[index - punctual].triangle];
       spherical = uses_solid_angle_sampling(q.p, scene.positions[t.x], scene.positions[t.y], scene.positions[t.z]);
     }
@@ -358,8 +386,6 @@ Agreement compare(const Scene& scene, const LightSampler& lights, size_t count, 
         } else {
           a.point_over_1e6 += point > 1e-6;
           a.point_rel = std::max(a.point_rel, point);
-          float u1 = 0.0f;
-          dist.sample(q.u.x, &u1);
           const uvec3& t = scene.triangles[lights.packed().emissive[index - punctual].triangle];
           const vec3 exact = spherical_point_in_double(q.p, scene.positions[t.x], scene.positions[t.y],
                                                        scene.positions[t.z], vec2(u1, q.u.y));
@@ -373,7 +399,7 @@ Agreement compare(const Scene& scene, const LightSampler& lights, size_t count, 
     }
 
     // LightSampler::pdf_emissive_hit.
-    const float hit_pdf = lights.pdf_emissive_hit(q.p, q.tri, q.y, q.ng);
+    const float hit_pdf = lights.pdf_emissive_hit(q.p, q.n, q.tri, q.y, q.ng);
     const uvec3& t = scene.triangles[q.tri];
     if (uses_solid_angle_sampling(q.p, scene.positions[t.x], scene.positions[t.y], scene.positions[t.z]))
       a.spherical_rel = std::max(a.spherical_rel, rel1(g.hit_pdf, hit_pdf));
@@ -405,16 +431,22 @@ Agreement compare(const Scene& scene, const LightSampler& lights, size_t count, 
   }
   std::printf(
       "%s: %zu queries (%zu punctual, %zu area, %zu solid-angle light samples; %zu emissions) in %.2f ms: "
+      "sampler %s: picks differing %zu, pmf rel %.2e, pick/pmf self-mismatches %zu; "
       "pick/remap/ok/emission mismatches %zu/%zu/%zu/%zu; max ulps %lld (punctual, area), "
       "solid-angle pdf/li rel %.2e, point rel %.2e (%zu above 1e-6; GPU error beyond 4x the CPU error %.2e; on cdf "
       "steps %.2e), emission rel %.2e (normal/weight %lld ulps)\n",
-      scene.source.c_str(), a.count, a.punctual, a.area, a.spherical, a.emitted, ms, a.pick_mismatch,
+      scene.source.c_str(), a.count, a.punctual, a.area, a.spherical, a.emitted, ms,
+      light_sampler_name(lights.kind()), a.sampler_pick_mismatch, a.sampler_pmf_rel, a.sampler_pmf_self_mismatch,
+      a.pick_mismatch,
       a.remap_mismatch, a.ok_mismatch, a.emission_mismatch, (long long)a.exact_ulps, a.spherical_rel,
       a.point_rel, a.point_over_1e6, a.point_excess, a.step_point_rel, a.emission_rel, (long long)a.emission_ulps);
   return a;
 }
 
 void expect_agreement(const Agreement& a, bool expect_spherical) {
+  EXPECT_EQ(a.sampler_pick_mismatch, 0u);
+  EXPECT_EQ(a.sampler_pmf_self_mismatch, 0u);
+  EXPECT_LT(a.sampler_pmf_rel, 1e-5);
   EXPECT_EQ(a.pick_mismatch, 0u);
   EXPECT_EQ(a.remap_mismatch, 0u);
   EXPECT_EQ(a.ok_mismatch, 0u);
@@ -465,6 +497,21 @@ TEST(GpuLightSampler, EqualsTheCpuOnTheStaircase) {
   Scene scene = load_gltf(path.string());
   LightSampler lights(scene);
   expect_agreement(compare(scene, lights, 30000, 4), false);
+}
+
+// The uniform, tree and slc samplers: the same picks, pmfs and samples as the CPU, with every
+// punctual light type beside the emissive quad (the directional light stands beside the tree).
+TEST(GpuLightSampler, EveryLightSamplerEqualsTheCpu) {
+  SKIP_WITHOUT_GPU("light_sampler_test");
+  Scene scene = cornell_with_punctual_lights();
+  uint32_t seed = 10;
+  for (LightSamplerKind kind : {LightSamplerKind::Uniform, LightSamplerKind::Tree, LightSamplerKind::Slc}) {
+    SCOPED_TRACE(light_sampler_name(kind));
+    LightSampler lights(scene, kind);
+    Agreement a = compare(scene, lights, 20000, seed++);
+    expect_agreement(a, true);
+    EXPECT_GT(a.punctual, a.count / 20);
+  }
 }
 
 TEST(GpuLightSampler, NoLightsSampleNothing) {

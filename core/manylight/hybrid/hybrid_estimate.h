@@ -7,7 +7,7 @@
 // Float throughout, as the thesis's GPU code.
 #ifndef SST_CORE_MANYLIGHT_HYBRID_HYBRID_ESTIMATE_H
 #define SST_CORE_MANYLIGHT_HYBRID_HYBRID_ESTIMATE_H
-#include "core/lighttree/box_bounds.h"
+#include "core/math/box_bounds.h"
 #include "core/math/accurate_math.h"
 #include "core/math/geometric_similarity.h"
 #include "core/manylight/estimator.h"

@@ -6,7 +6,7 @@
 #include <bit>
 #include <cmath>
 
-#include "core/lighttree/box_bounds.h"
+#include "core/math/box_bounds.h"
 #include "core/util/error.h"
 
 namespace sst {

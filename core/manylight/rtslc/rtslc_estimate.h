@@ -5,7 +5,7 @@
 // estimates, each times r^2 / its walk's probability. Float throughout, as the paper's GPU code.
 #ifndef SST_CORE_MANYLIGHT_RTSLC_RTSLC_ESTIMATE_H
 #define SST_CORE_MANYLIGHT_RTSLC_RTSLC_ESTIMATE_H
-#include "core/lighttree/box_bounds.h"
+#include "core/math/box_bounds.h"
 #include "core/manylight/estimator.h"
 #include "core/manylight/slc/slc_estimate.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "core/lighttree/box_bounds.h"
+#include "core/math/box_bounds.h"
 #include "core/rng/hash_rng.h"
 #include "core/util/error.h"
 

@@ -1,35 +1,21 @@
 // `slc`, stochastic lightcuts with one sample per cut (Yuksel 2019; METHODS.md section 3), the
 // estimate at one shading point (shared C++/GLSL source; slc_sampler.h is the method). Walks the
-// tree from the root to a leaf with Yuksel's child weights
-//   w_i = lum(I_i) * cosbound_i / dmin_i^2
-// (distance ignored for both when x is within one box diagonal of either child: the 1/d^2 bound
-// is meaningless there and would starve the sibling) and shades the leaf's VPL divided by the
-// walk's probability.
+// tree from the root to a leaf with Yuksel's child weights (core/lights/slc_weights.h, with the
+// luminance of each node's summed VPL intensity) and shades the leaf's VPL divided by the walk's
+// probability.
 #ifndef SST_CORE_MANYLIGHT_SLC_SLC_ESTIMATE_H
 #define SST_CORE_MANYLIGHT_SLC_SLC_ESTIMATE_H
-#include "core/lighttree/box_bounds.h"
+#include "core/lights/slc_weights.h"
 #include "core/manylight/estimator.h"
 
 SST_BEGIN
 
 // (w_left, w_right) at shading position x with shading normal n (rtslc's `weights slc` too).
 SST_FUNC vec2 slc_child_weights(SST_IN(LightNode) left, SST_IN(LightNode) right, vec3 x, vec3 n) {
-  float base[2];
-  float d2[2];
-  bool near = false;
-  for (int k = 0; k < 2; ++k) {
-    LightNode node = k == 0 ? left : right;
-    bool empty = light_node_empty(node);
-    SST_PRECISE float b = luminance(node.intensity) * box_cos_bound(node.bounds_lo, node.bounds_hi, x, n);
-    base[k] = empty ? 0.0f : b;
-    d2[k] = empty ? 0.0f : box_distance2_min(node.bounds_lo, node.bounds_hi, x);
-    float diag = box_diagonal(node.bounds_lo, node.bounds_hi);
-    // <= rather than <: a point box (diag 0) at x itself must not divide by 0.
-    SST_PRECISE float diag2 = diag * diag;
-    if (!empty && d2[k] <= diag2) near = true;
-  }
-  if (near) return vec2(base[0], base[1]);
-  return vec2(base[0] > 0.0f ? base[0] / d2[0] : 0.0f, base[1] > 0.0f ? base[1] / d2[1] : 0.0f);
+  SST_PRECISE float lum_left = luminance(left.intensity);
+  SST_PRECISE float lum_right = luminance(right.intensity);
+  return slc_pair_weights(left.bounds_lo, left.bounds_hi, lum_left, light_node_empty(left), right.bounds_lo,
+                          right.bounds_hi, lum_right, light_node_empty(right), x, n);
 }
 
 SST_FUNC IndirectEstimate estimate_slc(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_INOUT(PixelSampler) ps) {

@@ -5,7 +5,7 @@
 // the walk's and the lobe's probability.
 #ifndef SST_CORE_MANYLIGHT_SST_SST_ESTIMATE_H
 #define SST_CORE_MANYLIGHT_SST_SST_ESTIMATE_H
-#include "core/lighttree/box_bounds.h"
+#include "core/math/box_bounds.h"
 #include "core/math/accurate_math.h"
 #include "core/manylight/estimator.h"
 

@@ -3,7 +3,7 @@
 // exhaustive on the same VPL set (per-pixel z-test).
 #include <gtest/gtest.h>
 
-#include "core/lighttree/box_bounds.h"
+#include "core/math/box_bounds.h"
 #include "core/manylight/slc/slc_sampler.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"

@@ -1,9 +1,10 @@
 // Bounds of a light-tree node's box [lo, hi] as seen from a shading point x: what every tree
-// sampler's weights are built from (SLC, SST, RTSLC, the hybrid's cuts), on both backends
+// sampler's weights are built from (SLC, SST, RTSLC, the hybrid's cuts over VPLs; the emitter
+// tree's slc weights over the scene's lights), on both backends
 // (shared C++/GLSL source). Decisions taken on these values (which child, whether a box is
 // behind the surface) must be the same on the CPU and the GPU, hence the precise temporaries.
-#ifndef SST_CORE_LIGHTTREE_BOX_BOUNDS_H
-#define SST_CORE_LIGHTTREE_BOX_BOUNDS_H
+#ifndef SST_CORE_MATH_BOX_BOUNDS_H
+#define SST_CORE_MATH_BOX_BOUNDS_H
 #include "core/math/vector_math.h"
 
 SST_BEGIN
@@ -82,4 +83,4 @@ inline float box_cos_bound_linear(const Bounds3& b, vec3 x, vec3 n) { return box
 }  // namespace sst
 #endif
 
-#endif  // SST_CORE_LIGHTTREE_BOX_BOUNDS_H
+#endif  // SST_CORE_MATH_BOX_BOUNDS_H

@@ -1,0 +1,144 @@
+#include "core/lights/emitter_tree_build.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "core/math/math.h"
+#include "core/math/morton.h"
+#include "core/util/error.h"
+
+namespace sst {
+namespace {
+
+constexpr double kPiD = 3.14159265358979323846;
+
+struct Cone {
+  glm::dvec3 axis;
+  double theta;  // half angle, [0, pi]
+};
+
+double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
+}
+
+// pbrt-v4's DirectionCone::Union: the smallest cone (about a direction between the two axes)
+// that holds both.
+Cone cone_union(const Cone& a, const Cone& b) {
+  double d = angle_between(a.axis, b.axis);
+  if (std::min(d + b.theta, kPiD) <= a.theta) return a;
+  if (std::min(d + a.theta, kPiD) <= b.theta) return b;
+  double theta = 0.5 * (a.theta + d + b.theta);
+  if (theta >= kPiD) return {a.axis, kPiD};
+  glm::dvec3 r = glm::cross(a.axis, b.axis);
+  double r2 = glm::dot(r, r);
+  if (!(r2 > 0.0)) return {a.axis, kPiD};  // opposite axes
+  // a's axis turned toward b's by theta - theta_a, in the plane of the two.
+  double turn = theta - a.theta;
+  glm::dvec3 side = glm::normalize(glm::cross(r / std::sqrt(r2), a.axis));
+  glm::dvec3 axis = glm::normalize(a.axis * std::cos(turn) + side * std::sin(turn));
+  return {axis, theta};
+}
+
+glsl::EmitterNode empty_node() {
+  glsl::EmitterNode n{};
+  n.lo = vec3(0.0f);
+  n.hi = vec3(0.0f);
+  n.intensity = 0.0f;
+  n.axis = vec3(0.0f, 0.0f, 1.0f);
+  n.cos_o = 1.0f;
+  n.cos_e = 1.0f;
+  n.flags = 0u;
+  n.entry = LIGHT_NONE;
+  return n;
+}
+
+template <class F>
+void parallel_range(size_t begin, size_t end, const F& f) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(begin, end, 2048), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+bool usable(const glsl::EmitterNode& n) { return n.intensity > 0.0f && std::isfinite(n.intensity); }
+
+}  // namespace
+
+glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::EmitterNode& b) {
+  if (!usable(a) && !usable(b)) return empty_node();
+  glsl::EmitterNode m = usable(a) ? a : b;
+  m.entry = LIGHT_NONE;
+  if (!usable(a) || !usable(b)) return m;
+  m.lo = glm::min(a.lo, b.lo);
+  m.hi = glm::max(a.hi, b.hi);
+  m.intensity = a.intensity + b.intensity;
+  m.flags = (a.flags | b.flags) & EMITTER_TWO_SIDED;
+  m.cos_e = std::min(a.cos_e, b.cos_e);
+  if (a.axis == b.axis && a.cos_o == b.cos_o) return m;  // the common case: one flat emitter
+  Cone ca{glm::dvec3(a.axis), std::acos(std::clamp(double(a.cos_o), -1.0, 1.0))};
+  Cone cb{glm::dvec3(b.axis), std::acos(std::clamp(double(b.cos_o), -1.0, 1.0))};
+  Cone c = cone_union(ca, cb);
+  m.axis = vec3(c.axis);
+  m.cos_o = c.theta >= kPiD ? -1.0f : float(std::cos(std::min(kPiD, c.theta + kConeSlack)));
+  return m;
+}
+
+EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
+  EmitterTree tree;
+  tree.node_of_entry.assign(lights.size(), LIGHT_NONE);
+  std::vector<uint32_t> in_tree;
+  std::vector<uint32_t> directional;
+  Bounds3 centres;
+  for (uint32_t i = 0; i < lights.size(); ++i) {
+    const glsl::EmitterNode& l = lights[i];
+    if (!usable(l)) continue;
+    if (l.flags & EMITTER_DIRECTIONAL) {
+      directional.push_back(i);
+      continue;
+    }
+    in_tree.push_back(i);
+    centres.extend(0.5f * (l.lo + l.hi));
+  }
+  const size_t n = in_tree.size();
+  if (n > (size_t(1) << 30)) throw Error("emitter tree: too many lights (" + std::to_string(n) + ")");
+  tree.leaves = n == 0 ? 0u : std::bit_ceil(uint32_t(n));
+  tree.directional_count = uint32_t(directional.size());
+  tree.nodes.assign(size_t(2) * tree.leaves + directional.size(), empty_node());
+
+  // Morton order of the centres; the entry in the low word breaks ties (and makes keys unique).
+  const MortonGrid grid = MortonGrid::over(centres);
+  std::vector<uint64_t> keys(n);
+  parallel_range(0, n, [&](size_t i) {
+    const glsl::EmitterNode& l = lights[in_tree[i]];
+    keys[i] = (uint64_t(grid.code(0.5f * (l.lo + l.hi))) << 32) | in_tree[i];
+  });
+  tbb::parallel_sort(keys.begin(), keys.end());
+
+  const uint32_t leaves = tree.leaves;
+  parallel_range(0, n, [&](size_t k) {
+    uint32_t entry = uint32_t(keys[k]);
+    glsl::EmitterNode leaf = lights[entry];
+    leaf.entry = entry;
+    tree.nodes[leaves + k] = leaf;
+    tree.node_of_entry[entry] = uint32_t(leaves + k);
+  });
+  // Bottom up, one level at a time: a level's nodes are independent.
+  for (uint32_t first = leaves / 2; first >= 1; first /= 2) {
+    parallel_range(first, size_t(2) * first, [&](size_t i) {
+      tree.nodes[i] = merge_emitter_nodes(tree.nodes[2 * i], tree.nodes[2 * i + 1]);
+    });
+  }
+  for (uint32_t k = 0; k < directional.size(); ++k) {
+    uint32_t node = 2 * leaves + k;
+    tree.nodes[node] = lights[directional[k]];
+    tree.nodes[node].entry = directional[k];
+    tree.node_of_entry[directional[k]] = node;
+  }
+  return tree;
+}
+
+}  // namespace sst

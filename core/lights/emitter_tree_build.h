@@ -1,0 +1,39 @@
+// Building the emitter tree that the `tree` and `slc` light samplers walk
+// (core/lights/emitter_tree.h; layout EmitterNode, core/lights/light_layout.h). The lights are
+// ordered by the Morton code of their box centres on a 1024^3 grid over the centres' bounds
+// (ties by entry), laid out as the leaves of a perfect binary tree in heap order (root 1,
+// children 2i and 2i + 1, leaves padded to a power of two with intensity-0 nodes), and merged
+// bottom up: boxes united, intensities summed, normal cones united (pbrt-v4's
+// DirectionCone::Union, in double, widened by kConeSlack so float storage stays conservative),
+// theta_e the larger of the two, two-sidedness if either is. A perfect tree over Morton order is
+// Yuksel's (SLC) and RTSLC's layout: O(n log n), a depth of ceil(log2 n), and a light's path is
+// the bits of its leaf index, so no tree needs pointers.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/lights/light_layout.h"
+
+namespace sst {
+
+// Extra half angle (radians) of every merged cone, over the rounding of its float axis and cosine.
+inline constexpr double kConeSlack = 1e-6;
+
+struct EmitterTree {
+  // 2 leaves + directional lights: node 0 unused, 1 .. 2 leaves - 1 the heap, then one node per
+  // directional light (what light_tree[] holds on the GPU).
+  std::vector<glsl::EmitterNode> nodes;
+  uint32_t leaves = 0;             // leaf slots, a power of two; 0 when no light is in the tree
+  uint32_t directional_count = 0;
+  std::vector<uint32_t> node_of_entry;  // per distribution entry: its node, or LIGHT_NONE
+};
+
+// The tree over `lights`, one leaf-form node per distribution entry: `entry` set to its index,
+// flags EMITTER_DIRECTIONAL for a directional light (kept beside the tree), box, cone and
+// intensity filled in. A light of intensity 0 (or not finite) gets no node. Parallel (oneTBB).
+EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights);
+
+// Merges two nodes as an inner node of the tree (exposed for tests).
+glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::EmitterNode& b);
+
+}  // namespace sst

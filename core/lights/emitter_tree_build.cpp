@@ -79,6 +79,11 @@ glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::Em
   m.flags = (a.flags | b.flags) & EMITTER_TWO_SIDED;
   m.cos_e = std::min(a.cos_e, b.cos_e);
   if (a.axis == b.axis && a.cos_o == b.cos_o) return m;  // the common case: one flat emitter
+  if (a.cos_o <= -1.0f || b.cos_o <= -1.0f) {             // either holds every direction already
+    m.axis = a.cos_o <= -1.0f ? a.axis : b.axis;
+    m.cos_o = -1.0f;
+    return m;
+  }
   Cone ca{glm::dvec3(a.axis), std::acos(std::clamp(double(a.cos_o), -1.0, 1.0))};
   Cone cb{glm::dvec3(b.axis), std::acos(std::clamp(double(b.cos_o), -1.0, 1.0))};
   Cone c = cone_union(ca, cb);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the two many-light scenes of sst's light-sampler experiments (configs/lights-*.json).
+"""Writes the three many-light scenes of sst's light-sampler experiments (configs/lights-*.json).
 
   cornell-lamp/cornell-lamp.gltf  The Cornell box (scenes/cornell-box.gltf) with its lamp cut into
                                   a 78 x 78 grid of quads: 12,168 emissive triangles (the RTSLC
@@ -7,7 +7,7 @@
                                   radiance and colour, scaled so that the lamp's total power is
                                   the original lamp's.
   night-street/night-street.gltf  A street at night, 200 m long over a 240 m ground: 24 buildings,
-                                  about 1,000 lit windows (two triangles each, one-sided), 20
+                                  312 lit windows (two triangles each, one-sided), 20
                                   strings of 40 coloured bulbs (octahedra, eight triangles each),
                                   neon signs (boxes), 20 point-light street lamps and 10 spot lights
                                   over doors: about 9,000 emissive triangles and 30 punctual lights.
@@ -19,6 +19,14 @@ folder on the scene path, e.g.
 
     python3 scenes/tools/make_many_lights.py ../shared/scenes
     SST_SCENE_PATH=../shared/scenes sst-render night-street --light-sampler tree
+
+Cycles references (Blender 3.4 from Debian, with python3-numpy; kept beside the scene, not in the
+repository), as results/README.md's comparison used them:
+
+    cd ../shared/scenes/night-street && blender -b --factory-startup -noaudio \
+      --python ../../tools/render_gltf.py -- --scene night-street.gltf --out ref/cycles-2048spp \
+      --res 192 --resy 108 --spp 2048 --bounces 8 --diffuse-only --threads 2
+    (cornell-lamp: --res 192 --spp 2048, the same otherwise)
 """
 import argparse
 import base64
@@ -305,15 +313,45 @@ def night_street(out_dir):
     print("night-street: %d lit windows" % window_count)
 
 
+def fairground(out_dir):
+    """1,000 lamp posts scattered over a 300 m field with 60 stalls: each point of the ground is lit
+    mostly by the few lamps near it, the case a light tree is made for."""
+    rng = random.Random(1000)
+    b = Builder()
+    grass = b.material("ground", (0.25, 0.3, 0.2))
+    wood = b.material("post", (0.35, 0.25, 0.15))
+    canvas = [b.material("stall_%d" % k, c) for k, c in enumerate([(0.7, 0.2, 0.2), (0.2, 0.3, 0.7), (0.8, 0.8, 0.7)])]
+    bulbs = [b.material("lamp_%d" % k, (0.0, 0.0, 0.0), c, s, double_sided=False) for k, (c, s) in enumerate(
+        [((1.0, 0.8, 0.5), 240.0), ((1.0, 0.3, 0.2), 160.0), ((0.3, 1.0, 0.4), 160.0), ((0.4, 0.5, 1.0), 200.0), ((1.0, 1.0, 1.0), 120.0)])]
+    L = 150.0
+    b.quad(grass, (-L, 0.0, -L), (-L, 0.0, L), (L, 0.0, L), (L, 0.0, -L))
+    for _ in range(60):
+        x, z = rng.uniform(-140, 140), rng.uniform(-140, 140)
+        w, d, h = rng.uniform(3, 6), rng.uniform(3, 6), rng.uniform(2.5, 4.0)
+        b.box(canvas[rng.randrange(3)], (x, 0.0, z), (x + w, h, z + d))
+    for _ in range(1000):
+        x, z = rng.uniform(-145, 145), rng.uniform(-145, 145)
+        h = rng.uniform(2.5, 4.5)
+        b.box(wood, (x - 0.05, 0.0, z - 0.05), (x + 0.05, h, z + 0.05))
+        b.octahedron(bulbs[rng.randrange(len(bulbs))], (x, h + 0.15, z), rng.uniform(0.08, 0.2))
+    pitch = math.radians(-25.0)
+    camera = {"name": "main", "camera": 0, "translation": [0.0, 25.0, 150.0],
+              "rotation": [math.sin(pitch / 2), 0.0, 0.0, math.cos(pitch / 2)],
+              "_perspective": {"yfov": 0.8, "aspectRatio": 16.0 / 9.0, "znear": 0.05, "zfar": 2000.0}}
+    b.write(os.path.join(out_dir, "fairground", "fairground.gltf"), camera)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out_dir", help="folder to write cornell-lamp/ and night-street/ into (e.g. a folder on SST_SCENE_PATH)")
-    ap.add_argument("--only", choices=["cornell-lamp", "night-street"])
+    ap.add_argument("--only", choices=["cornell-lamp", "night-street", "fairground"])
     a = ap.parse_args()
     if a.only in (None, "cornell-lamp"):
         cornell_lamp(a.out_dir)
     if a.only in (None, "night-street"):
         night_street(a.out_dir)
+    if a.only in (None, "fairground"):
+        fairground(a.out_dir)
 
 
 if __name__ == "__main__":

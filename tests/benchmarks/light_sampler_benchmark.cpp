@@ -52,6 +52,24 @@ BENCHMARK_CAPTURE(BM_LightSetup, power, sst::LightSamplerKind::Power)
 BENCHMARK_CAPTURE(BM_LightSetup, tree, sst::LightSamplerKind::Tree)
     ->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The tree build alone (sort and merge) over leaves made beforehand, as LightSampler makes them.
+void BM_EmitterTreeBuild(benchmark::State& state) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+  sst::Scene scene = random_emitters(int(state.range(0)), 1);
+  sst::LightSampler lights(scene, sst::LightSamplerKind::Tree);
+  std::vector<sst::glsl::EmitterNode> leaves;
+  for (uint32_t e = 0; e < lights.light_count(); ++e) {
+    sst::glsl::EmitterNode n = lights.packed().tree[lights.packed().distribution[e].tree_node];
+    n.entry = LIGHT_NONE;
+    leaves.push_back(n);
+  }
+  for (auto _ : state) {
+    sst::EmitterTree tree = sst::build_emitter_tree(leaves);
+    benchmark::DoNotOptimize(tree.nodes.data());
+  }
+}
+BENCHMARK(BM_EmitterTreeBuild)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 void BM_LightPick(benchmark::State& state, sst::LightSamplerKind kind) {
   static const sst::Scene scene = random_emitters(100000, 2);
   sst::LightSampler lights(scene, kind);

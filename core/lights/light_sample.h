@@ -2,9 +2,9 @@
 // (core/math/cpu_gpu.h): LightSampler (core/lights/light_sampler.h) on the CPU, the shaders on
 // the GPU. One light is picked by the header's sampler (LIGHT_SAMPLER_*: uniformly, in proportion
 // to its power from the distribution's CDF, or for the shading point down the emitter tree,
-// core/lights/emitter_tree.h), then a point on it (punctual lights: their position or direction; emissive triangles: uniform by
-// solid angle where the triangle subtends a large angle from the shading point, uniform by area
-// otherwise); also the pdf of hitting an emissive triangle by BSDF sampling (for MIS) and the
+// core/lights/emitter_tree.h), then a point on it (punctual lights: their position or direction;
+// emissive triangles: uniform by solid angle where the triangle subtends a large angle from the
+// shading point, uniform by area otherwise); also the pdf of hitting an emissive triangle by BSDF sampling (for MIS) and the
 // start of a light path (sample_emission, for VPLs). What each returns is documented at
 // LightSampler.
 //

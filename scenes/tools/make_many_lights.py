@@ -26,7 +26,7 @@ repository), as results/README.md's comparison used them:
     cd ../shared/scenes/night-street && blender -b --factory-startup -noaudio \
       --python ../../tools/render_gltf.py -- --scene night-street.gltf --out ref/cycles-2048spp \
       --res 192 --resy 108 --spp 2048 --bounces 8 --diffuse-only --threads 2
-    (cornell-lamp: --res 192 --spp 2048, the same otherwise)
+    (cornell-lamp: --res 192 --spp 1024; fairground: --res 192 --resy 108 --spp 1024)
 """
 import argparse
 import base64

@@ -123,19 +123,6 @@ size_t PackedLights::bytes() const {
 
 LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&scene), kind_(kind) {
   const bool tree = kind == LightSamplerKind::Tree || kind == LightSamplerKind::Slc;
-  // An upper bound of the entries, reserved up front: growing these vectors copied them about
-  // twice over (a fifth of a million-triangle build).
-  size_t emissive_bound = 0;
-  for (uint32_t m : scene.triangle_material) emissive_bound += scene.materials[m].emission != vec3(0.0f);
-  std::vector<double> weights;
-  std::vector<glsl::EmitterNode> leaves;
-  weights.reserve(scene.lights.size() + emissive_bound);
-  if (tree) leaves.reserve(scene.lights.size() + emissive_bound);
-  packed_.emissive.reserve(emissive_bound);
-  for (const PunctualLight& light : scene.lights) {
-    weights.push_back(punctual_power(light, scene.bounds));
-    if (tree) leaves.push_back(punctual_leaf(light));
-  }
   // Per material: the luminance of its mean emitted radiance, and the power per unit area.
   std::vector<float> material_radiance(scene.materials.size(), 0.0f);
   std::vector<float> material_scale(scene.materials.size(), 0.0f);
@@ -146,6 +133,19 @@ LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&
                     : 1.0f;
     material_radiance[m] = luminance(mat.emission) * tex;
     material_scale[m] = material_radiance[m] * kPi * (mat.double_sided ? 2.0f : 1.0f);
+  }
+  // An upper bound of the entries, reserved up front: growing these vectors copied them about
+  // twice over (a fifth of a million-triangle build).
+  size_t emissive_bound = 0;
+  for (uint32_t m : scene.triangle_material) emissive_bound += material_scale[m] > 0.0f;
+  std::vector<double> weights;
+  std::vector<glsl::EmitterNode> leaves;
+  weights.reserve(scene.lights.size() + emissive_bound);
+  if (tree) leaves.reserve(scene.lights.size() + emissive_bound);
+  packed_.emissive.reserve(emissive_bound);
+  for (const PunctualLight& light : scene.lights) {
+    weights.push_back(punctual_power(light, scene.bounds));
+    if (tree) leaves.push_back(punctual_leaf(light));
   }
   packed_.light_of_triangle.assign(scene.triangles.size(), LIGHT_NONE);
   for (uint32_t t = 0; t < scene.triangles.size(); ++t) {

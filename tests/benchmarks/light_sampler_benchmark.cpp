@@ -2,45 +2,20 @@
 // emissive triangles (LightSampler's whole setup: power distribution, leaves, Morton sort,
 // bottom-up merge), and one pick for a shading point with each sampler (power: a binary search
 // of the CDF; tree and slc: a walk of log2(n) levels) at 100k emissive triangles. The scene is
-// random small triangles in a 10 m box (as tests/analytic_scenes.h's many_lights), built here.
+// tests/analytic_scenes.h's many_lights: random small emissive triangles in an 8 m room.
 #include <benchmark/benchmark.h>
 #include <tbb/global_control.h>
 
 #include <random>
 
 #include "core/lights/light_sampler.h"
+#include "tests/analytic_scenes.h"
 
 namespace {
 
-sst::Scene random_emitters(int count, uint32_t seed) {
-  std::mt19937 rng(seed);
-  auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; };
-  sst::Scene s;
-  s.source = "generated:random_emitters";
-  for (int k = 0; k < 4; ++k) {
-    sst::Material m;
-    m.emission = sst::vec3(1.0f + float(k), 2.0f, 3.0f - float(k) * 0.5f);
-    m.double_sided = k >= 2;
-    s.materials.push_back(m);
-  }
-  for (int i = 0; i < count; ++i) {
-    sst::vec3 c(uniform(-5, 5), uniform(0, 4), uniform(-5, 5));
-    uint32_t base = uint32_t(s.positions.size());
-    for (int v = 0; v < 3; ++v) {
-      s.positions.push_back(c + sst::vec3(uniform(-0.1f, 0.1f), uniform(-0.1f, 0.1f), uniform(-0.1f, 0.1f)));
-      s.normals.push_back(sst::vec3(0, 1, 0));
-      s.uvs.push_back(sst::vec2(0.0f));
-    }
-    s.triangles.push_back({base, base + 1, base + 2});
-    s.triangle_material.push_back(uint32_t(rng() % 4u));
-  }
-  s.finalize_bounds();
-  return s;
-}
-
 void BM_LightSetup(benchmark::State& state, sst::LightSamplerKind kind) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
-  sst::Scene scene = random_emitters(int(state.range(0)), 1);
+  sst::Scene scene = sst::test::many_lights(1, int(state.range(0)), 0, 0, false);
   for (auto _ : state) {
     sst::LightSampler lights(scene, kind);
     benchmark::DoNotOptimize(lights.packed().tree.data());
@@ -55,7 +30,7 @@ BENCHMARK_CAPTURE(BM_LightSetup, tree, sst::LightSamplerKind::Tree)
 // The tree build alone (sort and merge) over leaves made beforehand, as LightSampler makes them.
 void BM_EmitterTreeBuild(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
-  sst::Scene scene = random_emitters(int(state.range(0)), 1);
+  sst::Scene scene = sst::test::many_lights(1, int(state.range(0)), 0, 0, false);
   sst::LightSampler lights(scene, sst::LightSamplerKind::Tree);
   std::vector<sst::glsl::EmitterNode> leaves;
   for (uint32_t e = 0; e < lights.light_count(); ++e) {
@@ -71,7 +46,7 @@ void BM_EmitterTreeBuild(benchmark::State& state) {
 BENCHMARK(BM_EmitterTreeBuild)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_LightPick(benchmark::State& state, sst::LightSamplerKind kind) {
-  static const sst::Scene scene = random_emitters(100000, 2);
+  static const sst::Scene scene = sst::test::many_lights(2, 100000, 0, 0, false);
   sst::LightSampler lights(scene, kind);
   std::mt19937 rng(3);
   auto uniform = [&]() { return float(rng() >> 8) * 0x1p-24f; };

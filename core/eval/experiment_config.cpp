@@ -16,7 +16,8 @@ namespace {
 
 const std::vector<std::string> kConfigKeys = {"name",   "description",    "scenes",        "scene", "base",
                                               "axes",   "variants",       "reference",     "seeds", "repeat",
-                                              "time_budget_ms", "warmup_frames", "paths"};
+                                              "time_budget_ms", "warmup_frames", "paths",
+                                              "metrics_layer"};
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
@@ -188,6 +189,12 @@ ExperimentConfig parse_experiment_config(const nlohmann::json& j, const std::str
       throw Error(context + ": warmup_frames: expected an integer in 0..100000, got " + w.dump());
     c.warmup_frames = w.get<int>();
   }
+  if (j.contains("metrics_layer")) {
+    const nlohmann::json& m = j["metrics_layer"];
+    if (!m.is_string() || (m != "color" && m != "direct" && m != "indirect"))
+      throw Error(context + ": metrics_layer: expected \"color\", \"direct\" or \"indirect\", got " + m.dump());
+    c.metrics_layer = m.get<std::string>();
+  }
   if (j.contains("paths")) {
     if (!j["paths"].is_array()) throw Error(context + ": 'paths' must be a list of key-frame paths");
     c.paths = j["paths"];
@@ -250,6 +257,7 @@ std::vector<RunSpec> expand_runs(const ExperimentConfig& config) {
           run.axes = axes;
           run.repeat = config.repeat;
           run.warmup_frames = config.warmup_frames;
+          run.metrics_layer = config.metrics_layer;
           run.paths = config.paths;
           nlohmann::json params = merged;
           run.seed = seed0 + uint32_t(s);
@@ -270,6 +278,7 @@ std::vector<RunSpec> expand_runs(const ExperimentConfig& config) {
           // Only sequences name their frames, so the runs of earlier configs keep their hashes.
           if (run.warmup_frames > 0) identity["warmup_frames"] = run.warmup_frames;
           if (!run.paths.is_null()) identity["paths"] = run.paths;
+          if (run.metrics_layer != "color") identity["metrics_layer"] = run.metrics_layer;
           run.spec_hash = Hash64().add(identity.dump()).hex();
           reference_for(run, config.reference, "");  // a bad reference fails now, not after hours
           runs.push_back(std::move(run));

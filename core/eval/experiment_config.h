@@ -16,6 +16,8 @@
 // | repeat         | renders per run for timing (medians with min and max)                            |
 // | time_budget_ms | equal-time mode: spp is calibrated per run so its frame time meets the budget    |
 // | warmup_frames  | sequences: frames rendered before the measured ones (`frames`, a render option)  |
+// | metrics_layer  | the run's layer compared with the reference: color (default), direct or indirect  |
+// |                | (e.g. direct against a max_bounces 0 reference: the direct light alone)          |
 // | paths          | sequences: key-frame paths moving cameras and lights (core/scene/key_frame_path.h) |
 //
 // A parameter that belongs only to other methods than a run's (e.g. vpls on a pt variant) does
@@ -45,6 +47,7 @@ struct ExperimentConfig {
   int seeds = 1;
   int repeat = 1;
   int warmup_frames = 0;
+  std::string metrics_layer = "color";
   nlohmann::json paths;   // null: none
   nlohmann::json source;  // the config as given
 };
@@ -64,6 +67,7 @@ struct RunSpec {
   double time_budget_ms = 0.0;   // > 0: equal-time mode
   int repeat = 1;
   int warmup_frames = 0;         // a sequence's frames before those measured
+  std::string metrics_layer = "color";  // FrameOutput layer compared with the reference
   nlohmann::json paths;          // the config's key-frame paths (null: none)
   std::string spec_hash;  // of everything above that determines the run's result
 };

@@ -149,6 +149,11 @@ int calibrate_sequence_spp(Scene& scene, const RunSpec& run, double budget_ms, n
   return spp;
 }
 
+// The layer of `frame` an experiment's metrics_layer names.
+const Image& measured_layer(const FrameOutput& frame, const std::string& name) {
+  return name == "direct" ? frame.direct : name == "indirect" ? frame.indirect : frame.color;
+}
+
 // A sequence run: warm-up frames, then measured frames, each against its own reference. Per-frame
 // metrics of the output and of the raw frame (before reuse and denoising), their medians, and the
 // flicker of both (core/metrics/metrics.h): the record's "metrics" are the medians, so tables and
@@ -157,6 +162,8 @@ int calibrate_sequence_spp(Scene& scene, const RunSpec& run, double budget_ms, n
 // continues from it.
 void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference& frame_reference,
                           const std::string& run_dir, nlohmann::json& record) {
+  if (run.metrics_layer != "color")
+    throw Error("metrics_layer '" + run.metrics_layer + "' applies to single frames; a sequence is measured on its color");
   RenderOptions options = run_options(run);
   std::string discarded;
   std::optional<SequenceCheckpoint> resumed = load_checkpoint(run_dir, run.spec_hash, discarded);
@@ -323,8 +330,9 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
   fs::path dir(run_dir);
   write_image((dir / "image.exr").string(), last.frame.color, last.frame.layers());
   write_image((dir / "image.png").string(), last.frame.color, {}, last.options.exposure);
-  write_image((dir / "error.png").string(), error_heatmap(last.frame.color, *reference.image));
-  ImageMetrics metrics = compare_images(last.frame.color, *reference.image);
+  const Image& measured = measured_layer(last.frame, run.metrics_layer);
+  write_image((dir / "error.png").string(), error_heatmap(measured, *reference.image));
+  ImageMetrics metrics = compare_images(measured, *reference.image);
 
   nlohmann::json params = params_to_json(last.options);
   params.update(last.method_params);
@@ -345,6 +353,7 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
       {"metrics", to_json(metrics)},
   });
   record["counters"]["method"] = last.frame.method_counters;
+  if (run.metrics_layer != "color") record["metrics_layer"] = run.metrics_layer;
   write_json_atomic((dir / "run.json").string(), record);
   return record;
 }

@@ -141,6 +141,33 @@ SST_FUNC float emitter_top_total(LIGHT_CTX_PARAM vec3 p, vec3 n, SST_OUT(float) 
   return total;
 }
 
+// The walk from `node` (any node; one at or past the leaves is the light itself) down to a leaf,
+// each child chosen with u in [0, 1) in proportion to its weight for p, n: the leaf's
+// distribution entry, or LIGHT_NONE where both children of a node weigh zero. `prob` is
+// multiplied by each choice's probability and `u` is left at its position within the chosen
+// leaf's share. emitter_tree_pick walks from the root; RTSLC's direct light from each node of a
+// block's cut (core/manylight/rtslc/rtslc_direct.h).
+SST_FUNC uint emitter_tree_descend(LIGHT_CTX_PARAM uint node, vec3 p, vec3 n, SST_INOUT(float) u, SST_INOUT(float) prob) {
+  uint leaves = LIGHT_HEADER.tree_leaves;
+  while (node < leaves) {
+    vec2 cw = emitter_child_weights(LIGHT_CTX node, p, n);
+    float sum = cw.x + cw.y;
+    if (!(sum > 0.0f)) return LIGHT_NONE;
+    float p_left = cw.x / sum;
+    float p_right = cw.y / sum;
+    if (u < p_left) {
+      node = 2u * node;
+      u = min(u / p_left, kOneMinusEpsilon);
+      prob *= p_left;
+    } else {
+      node = 2u * node + 1u;
+      u = clamp((u - p_left) / (1.0f - p_left), 0.0f, kOneMinusEpsilon);
+      prob *= p_right;
+    }
+  }
+  return LIGHT_TREE(node).entry;
+}
+
 // A light for p, n with u in [0, 1): its distribution entry, or LIGHT_NONE when every weight is
 // zero (no light can contribute). `pmf` receives its probability, `u_remapped` u's position
 // within the chosen light's share of [0, 1) (uniform; a pick loses about one bit of it per level).
@@ -170,26 +197,7 @@ SST_FUNC uint emitter_tree_pick(LIGHT_CTX_PARAM vec3 p, vec3 n, float u, SST_OUT
   float prob = w / total;
   u = clamp((target - below) / w, 0.0f, kOneMinusEpsilon);
   uint node = emitter_top_node(LIGHT_CTX chosen);
-  uint leaves = LIGHT_HEADER.tree_leaves;
-  if (node == 1u) {
-    while (node < leaves) {
-      vec2 cw = emitter_child_weights(LIGHT_CTX node, p, n);
-      float sum = cw.x + cw.y;
-      if (!(sum > 0.0f)) return LIGHT_NONE;
-      float p_left = cw.x / sum;
-      float p_right = cw.y / sum;
-      if (u < p_left) {
-        node = 2u * node;
-        u = min(u / p_left, kOneMinusEpsilon);
-        prob *= p_left;
-      } else {
-        node = 2u * node + 1u;
-        u = clamp((u - p_left) / (1.0f - p_left), 0.0f, kOneMinusEpsilon);
-        prob *= p_right;
-      }
-    }
-  }
-  uint entry = LIGHT_TREE(node).entry;
+  uint entry = emitter_tree_descend(LIGHT_CTX node, p, n, u, prob);
   if (entry == LIGHT_NONE || !(prob > 0.0f)) return LIGHT_NONE;
   pmf = prob;
   u_remapped = u;

@@ -8,6 +8,7 @@
 #include <bit>
 #include <cmath>
 
+#include "core/lights/light_sampler.h"
 #include "core/math/math.h"
 #include "core/math/morton.h"
 #include "core/util/error.h"
@@ -144,6 +145,38 @@ EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
     tree.node_of_entry[directional[k]] = node;
   }
   return tree;
+}
+
+void emitter_tree_cut(std::span<const glsl::EmitterNode> nodes, uint32_t leaves, uint32_t directional_count,
+                      bool seen, glm::vec3 p, glm::vec3 n, uint32_t max_nodes, std::vector<uint32_t>& cut) {
+  struct Candidate {
+    uint32_t node;
+    float importance, intensity;
+    bool operator<(const Candidate& o) const {
+      return importance != o.importance ? importance < o.importance : intensity < o.intensity;
+    }
+  };
+  auto make = [&](uint32_t i) {
+    const glsl::EmitterNode& e = nodes[i];
+    float w = seen && i < leaves ? emitter_importance(e, p, n) : 0.0f;
+    return Candidate{i, std::isfinite(w) ? w : (std::isinf(w) ? 3.0e38f : 0.0f), e.intensity};
+  };
+  // Cuts are at most a few dozen nodes: a linear scan beats a heap.
+  std::vector<Candidate> list;
+  if (leaves > 0 && nodes[1].intensity > 0.0f) list.push_back(make(1));
+  for (uint32_t k = 0; k < directional_count; ++k)
+    if (nodes[2 * leaves + k].intensity > 0.0f) list.push_back(make(2 * leaves + k));
+  while (list.size() < max_nodes) {
+    int best = -1;
+    for (size_t i = 0; i < list.size(); ++i)
+      if (list[i].node < leaves && (best < 0 || list[best] < list[i])) best = int(i);
+    if (best < 0) break;  // only leaves left
+    uint32_t node = list[best].node;
+    list.erase(list.begin() + best);
+    for (uint32_t c : {2 * node, 2 * node + 1})
+      if (nodes[c].intensity > 0.0f) list.push_back(make(c));
+  }
+  for (const Candidate& c : list) cut.push_back(c.node);
 }
 
 }  // namespace sst

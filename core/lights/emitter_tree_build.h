@@ -10,7 +10,10 @@
 // the bits of its leaf index, so no tree needs pointers.
 #pragma once
 #include <cstdint>
+#include <span>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "core/lights/light_layout.h"
 
@@ -32,6 +35,18 @@ struct EmitterTree {
 // flags EMITTER_DIRECTIONAL for a directional light (kept beside the tree), box, cone and
 // intensity filled in. A light of intensity 0 (or not finite) gets no node. Parallel (oneTBB).
 EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights);
+
+// A cut of the tree (`nodes`: light_tree[] with `leaves` leaf slots and `directional_count`
+// directional lights after them): nodes whose subtrees are disjoint and hold every light of
+// non-zero intensity, for RTSLC's per-block cuts on real lights (core/manylight/rtslc/
+// rtslc_direct.h). Greedy, as RTSLC's cuts over VPLs: start from the root and the directional
+// lights, then repeatedly replace the inner node of largest importance seen from the point
+// (emitter_importance at p with shading normal n; ties, and every node when `seen` is false,
+// by intensity) by its children of non-zero intensity, until the cut has `max_nodes` nodes or
+// only leaves. The start may exceed max_nodes (every directional light is in every cut).
+// Appends to `cut`.
+void emitter_tree_cut(std::span<const glsl::EmitterNode> nodes, uint32_t leaves, uint32_t directional_count,
+                      bool seen, glm::vec3 p, glm::vec3 n, uint32_t max_nodes, std::vector<uint32_t>& cut);
 
 // Merges two nodes as an inner node of the tree (exposed for tests).
 glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::EmitterNode& b);

@@ -248,10 +248,9 @@ SST_FUNC bool light_sample_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint
   return is_finite(s.pdf) && s.pdf > 0.0f;
 }
 
-// A light for shading point p with shading normal n (0: none; the tree samplers' receiver
-// cosine) with one 2D sample (u.x picks the light and is reused, remapped, for the point on it).
-// Returns false when no light can contribute.
-SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 u, SST_OUT(LightSample) s) {
+// What a sample that found no light holds.
+SST_FUNC LightSample light_sample_none() {
+  LightSample s;
   s.wi = vec3(0.0f);
   s.distance = 0.0f;
   s.li = vec3(0.0f);
@@ -259,13 +258,33 @@ SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 
   s.delta = false;
   s.point = vec3(0.0f);
   s.normal = vec3(0.0f);
+  return s;
+}
+
+// A point on light `index` (a distribution entry) for shading point p, the light chosen with
+// probability `pick` (folded into LightSample::pdf) and u the 2D sample for the point (u.x is
+// free for the triangle's position only when the pick did not use it, or remapped it).
+// Returns false when the light sends nothing to p.
+SST_FUNC bool light_sample_entry(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint index, float pick, vec2 u,
+                                 SST_OUT(LightSample) s) {
+  s = light_sample_none();
+  uint punctual_count = LIGHT_HEADER.punctual_count;
+  if (index < punctual_count) return light_sample_punctual(p, LIGHT_PUNCTUAL(index), pick, s);
+  return light_sample_triangle(SCENE_CTX LIGHT_CTX p, index - punctual_count, pick, u, s);
+}
+
+// A light for shading point p with shading normal n (0: none; the tree samplers' receiver
+// cosine) with one 2D sample (u.x picks the light and is reused, remapped, for the point on it).
+// Returns false when no light can contribute.
+SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 u, SST_OUT(LightSample) s) {
   float u1;
   float pick;
   uint index = light_pick_for(LIGHT_CTX p, n, u.x, pick, u1);
-  if (index == LIGHT_NONE) return false;
-  uint punctual_count = LIGHT_HEADER.punctual_count;
-  if (index < punctual_count) return light_sample_punctual(p, LIGHT_PUNCTUAL(index), pick, s);
-  return light_sample_triangle(SCENE_CTX LIGHT_CTX p, index - punctual_count, pick, vec2(u1, u.y), s);
+  if (index == LIGHT_NONE) {
+    s = light_sample_none();
+    return false;
+  }
+  return light_sample_entry(SCENE_CTX LIGHT_CTX p, index, pick, vec2(u1, u.y), s);
 }
 
 // The solid-angle pdf with which light_sample(p, n, ...) picks the point y (geometric normal

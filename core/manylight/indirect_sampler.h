@@ -49,6 +49,15 @@ class IndirectSampler {
   // function the Vulkan backend's estimate switch calls for SamplerParams.method too
   // (gpu/shaders/indirect_sampler.glsl); thread-safe. Call after prepare().
   virtual IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const = 0;
+  // Whether the sampler estimates the direct light itself (rtslc with direct_light = cuts): then
+  // the method's camera path takes only the first hit's emission and estimate_direct the rest,
+  // drawing from the pixel sampler before estimate(), as the Vulkan backend does. Otherwise every
+  // method's direct light is trace_path's with max_bounces = 0. Valid after prepare().
+  bool estimates_direct() const { return inputs_.params.rtslc_direct_cut_max_size > 0; }
+  virtual vec3 estimate_direct(const RenderContext& ctx, const ShadingPoint& point, PixelSampler& sampler,
+                               RayCounters& counters) const {
+    return vec3(0.0f);
+  }
   // What estimate() reads: the method id and parameters, views of the VPLs, tree, cuts and mock
   // cut (the Vulkan backend uploads them). Valid until the next prepare().
   const SamplerInputs& inputs() const { return inputs_; }

@@ -81,7 +81,15 @@ struct SamplerParams {
   float hybrid_n_min;         // HybridParams::n_min
   float hybrid_d_max_abs;     // d_max * scene diagonal
   uint hybrid_mock_cut_size;  // ml_mock_cut[] length
+  // rtslc with direct_light = cuts: per block a cut of the emitter tree (core/lights/
+  // light_layout.h's light_tree[]) of at most this many nodes, stored after the VPL cuts:
+  // block b's nodes at ml_cut_nodes[rtslc_direct_cut_first + b rtslc_direct_cut_max_size ..],
+  // its size at ml_cut_sizes[rtslc_direct_sizes_first + b]. 0: the direct light is trace_path's.
+  uint rtslc_direct_cut_max_size;
+  uint rtslc_direct_cut_first;
+  uint rtslc_direct_sizes_first;
   uint pad0;
+  uint pad1;
 };
 
 SST_END
@@ -94,10 +102,12 @@ static_assert(offsetof(GpuVpl, position) == 0 && offsetof(GpuVpl, normal) == 16 
               offsetof(GpuVpl, intensity) == 32);
 static_assert(sizeof(CutGuide) == 32);
 static_assert(offsetof(CutGuide, valid) == 12 && offsetof(CutGuide, n) == 16);
-static_assert(sizeof(SamplerParams) == 80);
+static_assert(sizeof(SamplerParams) == 96);
 static_assert(offsetof(SamplerParams, sst_eps) == 24 && offsetof(SamplerParams, cut_block_size) == 32 &&
               offsetof(SamplerParams, rtslc_interleave) == 48 && offsetof(SamplerParams, hybrid_cut_size) == 60 &&
-              offsetof(SamplerParams, hybrid_mock_cut_size) == 72);
+              offsetof(SamplerParams, hybrid_mock_cut_size) == 72 &&
+              offsetof(SamplerParams, rtslc_direct_cut_max_size) == 76 &&
+              offsetof(SamplerParams, rtslc_direct_sizes_first) == 84);
 inline constexpr uint32_t kManyLightBufferCount = MANY_LIGHT_BUFFER_COUNT;
 }  // namespace sst
 #else

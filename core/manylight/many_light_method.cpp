@@ -54,7 +54,8 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
   sampler_->prepare(lighting, timer, frame.method_counters);
 
   PathTracerParams direct_only;
-  direct_only.max_bounces = 0;
+  const bool own_direct = sampler_->estimates_direct();
+  direct_only.max_bounces = own_direct ? -1 : 0;
   Accumulators acc;
   const int spp = ctx.options.spp;
   timer.time("sampling", [&] {
@@ -73,7 +74,9 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
         ++rc.samples;
         vec3 value(0.0f);
         if (d.depth > 0.0f) {
-          IndirectEstimate e = sampler_->estimate(shading_point(hit, ray.direction, ctx.options.diffuse_only, x, y), sampler);
+          ShadingPoint sp = shading_point(hit, ray.direction, ctx.options.diffuse_only, x, y);
+          if (own_direct) d.direct += sampler_->estimate_direct(ctx, sp, sampler, rc);
+          IndirectEstimate e = sampler_->estimate(sp, sampler);
           rc.shadow_rays += e.shadow_rays;
           nodes += e.nodes_visited;
           ++samples;

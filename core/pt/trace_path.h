@@ -1,6 +1,7 @@
 // One camera path of `pt` (shared C++/GLSL source; path_tracer.h is the method): next-event
 // estimation with MIS (power heuristic) between light and BRDF sampling at every vertex, Russian
-// roulette after rr_min_bounces. Every method's direct light is this path with max_bounces = 0.
+// roulette after rr_min_bounces. Every method's direct light is this path with max_bounces = 0 (but
+// rtslc's with direct_light = cuts: max_bounces = -1 and its own estimate, core/manylight/rtslc/rtslc_direct.h).
 //
 // Hooks, besides the scene's (core/shading/surface_eval.h) and the lights' (core/lights/
 // light_sample.h), which the includer has bound already: the ray queries
@@ -51,13 +52,13 @@ SST_FUNC PathCounters path_counters() {
   return c;
 }
 
-// Next-event estimation at surface s: one light sample, one shadow ray, MIS-weighted.
-SST_FUNC vec3 sample_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN(Surface) s, SST_IN(Brdf) brdf,
-                            SST_IN(Basis) basis, vec3 wo, vec2 u, SST_INOUT(PathCounters) counters) {
-  LightSample ls;
-  if (!light_sample(SCENE_CTX LIGHT_CTX s.p, s.ns, u, ls)) return vec3(0.0f);
+// Light sample ls seen from p (geometric normal ng) through the BRDF, with one shadow ray:
+// weighted by the power heuristic against BRDF sampling when `mis`, else the only estimate of
+// that light's contribution.
+SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, SST_IN(Brdf) brdf, SST_IN(Basis) basis, vec3 wo,
+                                 SST_IN(LightSample) ls, bool mis, SST_INOUT(PathCounters) counters) {
   // Light from behind the geometric surface would leak through it: nothing is transmitted.
-  if (dot3(ls.wi, s.ng) <= 0.0f) return vec3(0.0f);
+  if (dot3(ls.wi, ng) <= 0.0f) return vec3(0.0f);
   vec3 wi = to_local(basis, ls.wi);
   vec3 f = brdf_eval(brdf, wo, wi);
   if (wi.z <= 0.0f || max_component(f) <= 0.0f || max_component(ls.li) <= 0.0f) return vec3(0.0f);
@@ -65,17 +66,25 @@ SST_FUNC vec3 sample_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN
   vec3 dir;
   float tmax;
   if (isinf(ls.distance)) {
-    origin = offset_ray_origin(RAY_EPSILON, s.p, s.ng);
+    origin = offset_ray_origin(RAY_EPSILON, p, ng);
     dir = ls.wi;
     tmax = kInf;
   } else {
-    shadow_ray_segment(RAY_EPSILON, s.p, s.ng, ls.point, ls.normal, origin, dir, tmax);
+    shadow_ray_segment(RAY_EPSILON, p, ng, ls.point, ls.normal, origin, dir, tmax);
   }
   counters.shadow_rays += 1u;
   if (RAY_OCCLUDED(origin, dir, tmax)) return vec3(0.0f);
-  float weight = ls.delta ? 1.0f : power_heuristic(ls.pdf, brdf_pdf(brdf, wo, wi));
+  float weight = ls.delta || !mis ? 1.0f : power_heuristic(ls.pdf, brdf_pdf(brdf, wo, wi));
   SST_PRECISE vec3 r = f * wi.z * ls.li * (weight / ls.pdf);
   return r;
+}
+
+// Next-event estimation at surface s: one light sample, one shadow ray, MIS-weighted.
+SST_FUNC vec3 sample_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN(Surface) s, SST_IN(Brdf) brdf,
+                            SST_IN(Basis) basis, vec3 wo, vec2 u, SST_INOUT(PathCounters) counters) {
+  LightSample ls;
+  if (!light_sample(SCENE_CTX LIGHT_CTX s.p, s.ns, u, ls)) return vec3(0.0f);
+  return shade_light_sample(RAY_CTX s.p, s.ng, brdf, basis, wo, ls, true, counters);
 }
 
 // a * b, never contracted into the addition it feeds. A helper rather than precise variables in
@@ -104,7 +113,8 @@ SST_FUNC Surface surface_none() {
   return s;
 }
 
-// The camera ray origin + t dir, then up to max_bounces indirect bounces (0: direct light only),
+// The camera ray origin + t dir, then up to max_bounces indirect bounces (0: direct light only;
+// -1: the first hit and its emission only, for a method that samples the direct light itself),
 // Russian roulette after rr_min_bounces. `first_hit` receives the surface the camera ray hit when
 // `hit` is true: the many-light methods shade it with their own indirect estimate after taking
 // the direct light from here (max_bounces = 0), so direct light is computed one way for all.

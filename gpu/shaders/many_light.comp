@@ -4,7 +4,8 @@
 #extension GL_KHR_shader_subgroup_basic : require
 // The sampling stage of every VPL method on the GPU: the twin of the pixel loop of
 // core/manylight/many_light_method.cpp. Per pixel and sample: the jittered camera ray, the direct
-// light exactly as `pt` with max_bounces = 0 computes it (path_trace.glsl), then one indirect
+// light exactly as `pt` with max_bounces = 0 computes it (path_trace.glsl; or rtslc's own from
+// its cuts of the emitter tree, core/manylight/rtslc/rtslc_direct.h), then one indirect
 // estimate from the frame's sampler at the first hit (indirect_sampler.glsl), summed into the
 // pixel's ManyLightTexel. A frame is rendered in dispatches of consecutive sample indices
 // [sample_offset, sample_offset + spp); the first overwrites the texels, the rest add to them.
@@ -38,6 +39,7 @@ layout(push_constant) uniform Push { ManyLightPush push; };
 #include "core/render/pinhole.h"
 #include "gpu/shaders/path_trace.glsl"
 #include "gpu/shaders/indirect_sampler.glsl"
+#include "core/manylight/rtslc/rtslc_direct.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -89,7 +91,11 @@ void main() {
     PathCounters counters = path_counters();
     Surface hit;
     bool has_hit;
-    PathSample d = trace_path(push.view.eye, dir, 0, 0, push.diffuse_only != 0u, ps, counters, hit, has_hit);
+    // rtslc with direct_light = cuts samples the direct light itself (rtslc_direct.h).
+    bool own_direct = ml_params.rtslc_direct_cut_max_size != 0u;
+    PathSample d = trace_path(push.view.eye, dir, own_direct ? -1 : 0, 0, push.diffuse_only != 0u, ps, counters, hit,
+                              has_hit);
+    if (own_direct && d.depth > 0.0) d.direct += estimate_rtslc_direct(shading_point(hit, dir, xy), ps, counters);
     // Every slice retraces the camera ray (the same bits each time); the first one counts it.
     if (first_slice) {
       acc.primary_rays += counters.primary_rays;

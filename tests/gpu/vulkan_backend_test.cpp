@@ -13,6 +13,7 @@
 #include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
+#include "tests/analytic_scenes.h"
 #include "tests/core/manylight/many_light_test_util.h"
 #include "tests/gpu/gpu_test_util.h"
 #include "tests/test_util.h"
@@ -68,7 +69,14 @@ struct Case {
   std::string method;
   nlohmann::json params;
   Agreement cornell, real_scene;
+  std::string light_sampler = "power";
 };
+
+// rtslc's direct light from cuts of the emitter tree (rtslc_direct.h), walked by `sampler`.
+Case rtslc_direct_cuts(const std::string& sampler) {
+  return {"rtslc", {{"vpls", 512}, {"interleave", 2}, {"direct_light", "cuts"}}, Agreement::exact, Agreement::exact,
+          sampler};
+}
 
 // pt, every VPL method of the list with 2048 VPLs (exhaustive, whose cost grows with them, 64),
 // and variants that take other paths through a method's kernels.
@@ -77,6 +85,7 @@ std::vector<Case> cases() {
   for (const std::string& m : test::many_light_method_names())
     cases.push_back({m, {{"vpls", m == "exhaustive" ? 64 : 2048}}, Agreement::exact, Agreement::exact});
   cases.push_back({"rtslc", {{"vpls", 2048}, {"interleave", 2}, {"weights", "slc"}}, Agreement::exact, Agreement::exact});
+  cases.push_back(rtslc_direct_cuts("tree"));
   return cases;
 }
 
@@ -89,6 +98,7 @@ RenderResult render(const Scene& scene, const Case& c, const std::string& backen
   options.seed = 7;
   options.backend = backend;
   options.accel = accel;
+  options.light_sampler = c.light_sampler;
   return render_frame(scene, options, c.params);
 }
 
@@ -110,8 +120,9 @@ void expect_backends_agree(const Scene& scene, const Case& c, Agreement agreemen
   double direct = relative_rmse(gpu.frame.direct, cpu.frame.direct);
   double indirect = relative_rmse(gpu.frame.indirect, cpu.frame.indirect);
   std::string name = scene.source.substr(scene.source.find_last_of('/') + 1);
+  std::string params = c.params.dump() + (c.light_sampler == "power" ? "" : " --light-sampler " + c.light_sampler);
   std::printf("%-26s %-10s %-48s relative RMSE vulkan vs cpu: color %.2e direct %.2e indirect %.2e\n", name.c_str(),
-              c.method.c_str(), c.params.dump().c_str(), color, direct, indirect);
+              c.method.c_str(), params.c_str(), color, direct, indirect);
   EXPECT_LT(direct, 1e-3);
   EXPECT_EQ(gpu.frame.counters.primary_rays, cpu.frame.counters.primary_rays);
   EXPECT_EQ(gpu.frame.counters.samples, cpu.frame.counters.samples);
@@ -130,6 +141,13 @@ TEST(VulkanBackend, EveryMethodMatchesTheCpuOnTheCornellBox) {
   SKIP_WITHOUT_GPU("many_light");
   Scene scene = load_default_scene();
   for (const Case& c : cases()) expect_backends_agree(scene, c, c.cornell);
+}
+
+// RTSLC's real-light case: thousands of emissive triangles, point, spot and directional lights.
+TEST(VulkanBackend, RtslcDirectCutsMatchTheCpuAmongManyLights) {
+  SKIP_WITHOUT_GPU("many_light");
+  Scene scene = test::many_lights(8, 1500, 6, 6, true);
+  for (const char* sampler : {"tree", "slc"}) expect_backends_agree(scene, rtslc_direct_cuts(sampler), Agreement::exact);
 }
 
 TEST(VulkanBackend, EveryMethodMatchesTheCpuOnTheBreakfastRoom) {

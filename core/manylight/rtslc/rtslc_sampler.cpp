@@ -1,5 +1,6 @@
 #include "core/manylight/rtslc/rtslc_sampler.h"
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -23,6 +24,9 @@ void validate(const RtslcParams& p) {
   if (p.interleave != 1 && p.interleave != 2 && p.interleave != 4)
     throw Error("rtslc: parameter 'interleave' must be 1, 2 or 4");
   parse_rtslc_weights(p.weights);
+  if (p.direct_light != "sampler" && p.direct_light != "cuts")
+    throw Error("rtslc: parameter 'direct_light' must be 'sampler' or 'cuts', got '" + p.direct_light + "'");
+  if (p.direct_cut_size < 1 || p.direct_cut_size > 32) throw Error("rtslc: parameter 'direct_cut_size' must be in 1..32");
 }
 
 RtslcWeights parse_rtslc_weights(const std::string& name) {
@@ -66,6 +70,48 @@ RtslcSampler::RtslcSampler(const RtslcParams& params) : TreeSamplerBase(params.t
   weights_ = parse_rtslc_weights(params_.weights);
 }
 
+void RtslcSampler::build_direct_cuts(const RenderContext& ctx, StageTimer& timer, nlohmann::json& counters,
+                                     SamplerInputs& inputs) {
+  const LightSamplerKind kind = ctx.lights.kind();
+  if (kind != LightSamplerKind::Tree && kind != LightSamplerKind::Slc)
+    throw Error(std::string("rtslc: direct_light 'cuts' walks the emitter tree: render with --light-sampler tree or "
+                            "slc (got ") + light_sampler_name(kind) + ")");
+  const PackedLights& lights = ctx.lights.packed();
+  const uint32_t leaves = lights.header.tree_leaves, directional = lights.header.directional_count;
+  // Every cut starts with the root and each directional light.
+  const uint32_t capacity = std::max(uint32_t(params_.direct_cut_size), (leaves > 0 ? 1u : 0u) + directional);
+  const size_t blocks = cuts_.grid.count();
+  const size_t first = cut_nodes_.size(), sizes_first = cut_sizes_.size();
+  cut_nodes_.resize(first + blocks * capacity, kNoNode);
+  cut_sizes_.resize(sizes_first + blocks, 0);
+  timer.time("direct_cuts", [&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks), [&](const tbb::blocked_range<size_t>& range) {
+      std::vector<uint32_t> cut;
+      for (size_t b = range.begin(); b < range.end(); ++b) {
+        const GBufferSample& g = cuts_.guides[b];
+        cut.clear();
+        emitter_tree_cut(lights.tree, leaves, directional, g.valid, g.p, g.n, capacity, cut);
+        std::copy(cut.begin(), cut.end(), cut_nodes_.begin() + first + b * capacity);
+        cut_sizes_[sizes_first + b] = uint32_t(cut.size());
+      }
+    });
+  });
+  uint64_t total = 0;
+  for (size_t b = 0; b < blocks; ++b) total += cut_sizes_[sizes_first + b];
+  counters["rtslc"]["direct_mean_cut_size"] = blocks ? double(total) / double(blocks) : 0.0;
+  inputs.params.rtslc_direct_cut_max_size = capacity;
+  inputs.params.rtslc_direct_cut_first = uint32_t(first);
+  inputs.params.rtslc_direct_sizes_first = uint32_t(sizes_first);
+}
+
+vec3 RtslcSampler::estimate_direct(const RenderContext& ctx, const ShadingPoint& point, PixelSampler& sampler,
+                                   RayCounters& counters) const {
+  PathCounters rays = path_counters();
+  vec3 v = estimate_rtslc_direct(ctx.scene, ctx.lights.packed(), ctx.accel, inputs(), point, sampler, rays);
+  counters.shadow_rays += rays.shadow_rays;
+  return v;
+}
+
 void RtslcSampler::build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) {
   const RenderContext& ctx = lighting.context;
   TreeSamplerBase::build(lighting, timer, counters, inputs);
@@ -90,6 +136,11 @@ void RtslcSampler::build(const VplLighting& lighting, StageTimer& timer, nlohman
                        {"blocks", cuts_.grid.count()},
                        {"mean_cut_size", cuts_.mean_size()}};
   set_cut_inputs(cuts_, inputs);
+  cut_nodes_ = cuts_.nodes;
+  cut_sizes_ = cuts_.sizes;
+  if (params_.direct_light == "cuts") build_direct_cuts(ctx, timer, counters, inputs);
+  inputs.cut_nodes = cut_nodes_;
+  inputs.cut_sizes = cut_sizes_;
   inputs.params.rtslc_interleave = uint32_t(params_.interleave);
   inputs.params.rtslc_weights = weights_id(weights_);
   inputs.params.rtslc_frame_index = uint32_t(ctx.frame);

@@ -4,6 +4,9 @@
 // estimates, each divided by its traversal probability. Unbiased (without interleaving, per
 // pixel; with interleaving, over each r x r tile of pixels).
 //
+// With direct_light = cuts the direct light comes from per-block cuts of the scene's emitter tree
+// too (rtslc_direct.h: the paper's real-light case), not from trace_path's one light sample.
+//
 // Parameters: RtslcParams below, which holds those of VPL generation and the light tree (which
 // must be the perfect one).
 #pragma once
@@ -15,6 +18,9 @@
 #include "core/manylight/block_cuts.h"
 #include "core/manylight/indirect_sampler.h"
 #include "core/manylight/rtslc/rtslc_estimate.h"
+#include "core/pt/path_tracer.h"
+// After path_tracer.h, which binds the scene's, the lights' and the rays' hooks.
+#include "core/manylight/rtslc/rtslc_direct.h"
 #include "core/manylight/tree_sampler_base.h"
 #include "core/manylight/tree_method_params.h"
 
@@ -26,6 +32,8 @@ struct RtslcParams {
   int cut_size = 8;
   int interleave = 1;
   std::string weights = "rtslc";
+  std::string direct_light = "sampler";
+  int direct_cut_size = 8;
 
   RtslcParams() { tree_method.tree.tree = "perfect"; }  // the paper's tree; the only one allowed
   template <class V>
@@ -40,6 +48,13 @@ struct RtslcParams {
     v("weights", weights,
       "traversal weights: rtslc (Lin & Yuksel 2020: mean of the min- and max-distance weights) or slc (Yuksel 2019: "
       "min distance, as the slc method; for equal-sample comparisons)");
+    v("direct_light", direct_light,
+      "sampler: direct light as every method takes it (one light sample by --light-sampler, MIS with the BRDF); "
+      "cuts: RTSLC on the scene's own emitters, a cut of the emitter tree per block at the same pivot, one light "
+      "sample down from each cut node (interleaved as above), no MIS; needs --light-sampler tree or slc, whose "
+      "child weights the walks below the cut use");
+    v("direct_cut_size", direct_cut_size,
+      "direct_light = cuts: nodes per cut of the emitter tree (1..32; every directional light is one more)");
   }
 };
 void validate(const RtslcParams& params);  // sst::Error naming the bad parameter
@@ -69,15 +84,23 @@ class RtslcSampler final : public TreeSamplerBase {
   IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
     return estimate_rtslc(inputs(), point, sampler);
   }
+  vec3 estimate_direct(const RenderContext& ctx, const ShadingPoint& point, PixelSampler& sampler,
+                       RayCounters& counters) const override;
 
  protected:
   uint32_t method_id() const override { return ML_METHOD_rtslc; }
   void build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs) override;
 
  private:
+  // direct_light = cuts: each block's cut of the emitter tree at cuts_' pivot, after the VPL cuts.
+  void build_direct_cuts(const RenderContext& ctx, StageTimer& timer, nlohmann::json& counters, SamplerInputs& inputs);
+
   RtslcParams params_;
   RtslcWeights weights_ = RtslcWeights::rtslc;  // params_.weights, parsed
   BlockCuts cuts_;  // built at each block's random pivot pixel
+  // The cuts as the estimators read them: cuts_' nodes and sizes, then (direct_light = cuts)
+  // those of the emitter-tree cuts.
+  std::vector<uint32_t> cut_nodes_, cut_sizes_;
 };
 
 }  // namespace sst

@@ -43,6 +43,8 @@ TEST(ExperimentConfig, ConflictsAndImpossibleValuesFailBeforeRendering) {
   EXPECT_NE(error_of({{"method", "rtslc"}, {"axes", {{"cut_size", {8, 64}}}}}).find("run 1"), std::string::npos);
   EXPECT_NE(error_of({{"axes", {{"method", {"pt", "slcc"}}}}}).find("did you mean 'slc'"), std::string::npos);
   EXPECT_NE(error_of({{"time_budget_ms", -1}}).find("time_budget_ms"), std::string::npos);
+  EXPECT_NE(error_of({{"metrics_layer", "albedo"}}).find("metrics_layer"), std::string::npos);
+  EXPECT_EQ(error_of({{"metrics_layer", "direct"}}), "");
 }
 
 TEST(ExperimentConfig, ExpandsTheProductOfAxesTimesVariantsTimesSeeds) {

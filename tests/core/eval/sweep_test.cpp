@@ -81,6 +81,32 @@ TEST(Sweep, VplReferenceUsesTheRunsOwnVplSet) {
   for (const json& run : r["runs"]) EXPECT_EQ(run["metrics"]["rmse"].get<double>(), 0.0);
 }
 
+TEST(Sweep, MetricsLayerDirectMeasuresTheDirectLightAlone) {
+  // pt with two bounces against a direct-light reference: its colour carries the indirect light
+  // too, its direct layer the direct light alone. Image means (green), whose noise at 8 spp is a
+  // few percent: the RMSE of so few samples is mostly noise either way.
+  struct Measured {
+    double mean, reference_mean;
+    std::string hash;
+  };
+  auto measure = [](const std::string& layer) {
+    auto dir = test::temp_dir();
+    json extra = {{"method", "pt"}, {"max_bounces", 2}, {"spp", 8}, {"reference", {{"spp", 64}, {"max_bounces", 0}}}};
+    if (!layer.empty()) extra["metrics_layer"] = layer;
+    json r = run_sweep(tiny_config(extra), options_in(dir));
+    const json& run = r["runs"][0];
+    EXPECT_EQ(run.value("metrics_layer", std::string("color")), layer.empty() ? "color" : layer);
+    return Measured{run["metrics"]["mean_test"][1].get<double>(), run["metrics"]["mean_reference"][1].get<double>(),
+                    run["spec_hash"].get<std::string>()};
+  };
+  Measured color = measure(""), direct = measure("direct");
+  std::cout << "green means against the direct-light reference's " << direct.reference_mean << ": color "
+            << color.mean << ", direct layer " << direct.mean << "\n";
+  EXPECT_NEAR(direct.mean / direct.reference_mean, 1.0, 0.1);
+  EXPECT_GT(color.mean / color.reference_mean, 1.2);
+  EXPECT_NE(direct.hash, color.hash);
+}
+
 TEST(Sweep, RefusesToOverwriteAndResumesOnlyWhatIsMissing) {
   auto dir = test::temp_dir();
   ExperimentConfig config = tiny_config({{"axes", {{"method", {"slc", "pt"}}}}});

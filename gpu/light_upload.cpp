@@ -35,7 +35,7 @@ GpuLights::GpuLights(const VulkanContext& context, const PackedLights& packed)
       distribution_(upload_buffer(context, packed.distribution, "lights: distribution")),
       emissive_(upload_buffer(context, packed.emissive, "lights: emissive triangles")),
       light_of_triangle_(upload_buffer(context, packed.light_of_triangle, "lights: light of triangle")),
-      tree_(upload_buffer(context, packed.tree, "lights: emitter tree")) {}
+      tree_(upload_buffer(context, std::span<const glsl::EmitterNode>(packed.tree), "lights: emitter tree")) {}
 
 std::vector<const GpuBuffer*> GpuLights::buffers() const {
   return {header_buffer_.get(), punctual_.get(), distribution_.get(), emissive_.get(), light_of_triangle_.get(),

@@ -2,7 +2,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <bit>
@@ -11,7 +10,9 @@
 #include "core/lights/light_sampler.h"
 #include "core/math/math.h"
 #include "core/math/morton.h"
+#include "core/math/radix_sort.h"
 #include "core/util/error.h"
+#include "core/util/memory.h"
 
 namespace sst {
 namespace {
@@ -45,6 +46,15 @@ Cone cone_union(const Cone& a, const Cone& b) {
   return {axis, theta};
 }
 
+// The largest float not above cos(angle): a stored cone never narrower than the angle. (Near pi
+// one float step of the cosine is several times kConeSlack of angle, so rounding to nearest
+// could undo the slack.)
+float cos_at_most(double angle) {
+  double c = std::cos(angle);
+  float f = float(c);
+  return double(f) > c ? std::nextafter(f, -2.0f) : f;
+}
+
 glsl::EmitterNode empty_node() {
   glsl::EmitterNode n{};
   n.lo = vec3(0.0f);
@@ -69,9 +79,17 @@ bool usable(const glsl::EmitterNode& n) { return n.intensity > 0.0f && std::isfi
 
 }  // namespace
 
-glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::EmitterNode& b) {
+namespace {
+
+// Merges a and b whose normal cones have half angles theta_a and theta_b (the doubles the build
+// keeps beside the nodes, so no level reads a cone back through its float cosine, whose steps
+// near pi are wider than the slack); the merged half angle, slack included, goes to `theta`.
+glsl::EmitterNode merge_nodes(const glsl::EmitterNode& a, double theta_a, const glsl::EmitterNode& b, double theta_b,
+                              double& theta) {
+  theta = 0.0;
   if (!usable(a) && !usable(b)) return empty_node();
   glsl::EmitterNode m = usable(a) ? a : b;
+  theta = usable(a) ? theta_a : theta_b;
   m.entry = LIGHT_NONE;
   if (!usable(a) || !usable(b)) return m;
   m.lo = glm::min(a.lo, b.lo);
@@ -79,18 +97,32 @@ glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::Em
   m.intensity = a.intensity + b.intensity;
   m.flags = (a.flags | b.flags) & EMITTER_TWO_SIDED;
   m.cos_e = std::min(a.cos_e, b.cos_e);
-  if (a.axis == b.axis && a.cos_o == b.cos_o) return m;  // the common case: one flat emitter
-  if (a.cos_o <= -1.0f || b.cos_o <= -1.0f) {             // either holds every direction already
-    m.axis = a.cos_o <= -1.0f ? a.axis : b.axis;
+  if (a.axis == b.axis && theta_a == theta_b) return m;  // the common case: one flat emitter
+  if (theta_a >= kPiD || theta_b >= kPiD) {              // either holds every direction already
+    m.axis = theta_a >= kPiD ? a.axis : b.axis;
     m.cos_o = -1.0f;
+    theta = kPiD;
     return m;
   }
-  Cone ca{glm::dvec3(a.axis), std::acos(std::clamp(double(a.cos_o), -1.0, 1.0))};
-  Cone cb{glm::dvec3(b.axis), std::acos(std::clamp(double(b.cos_o), -1.0, 1.0))};
-  Cone c = cone_union(ca, cb);
+  Cone c = cone_union({glm::dvec3(a.axis), theta_a}, {glm::dvec3(b.axis), theta_b});
   m.axis = vec3(c.axis);
-  m.cos_o = c.theta >= kPiD ? -1.0f : float(std::cos(std::min(kPiD, c.theta + kConeSlack)));
+  theta = c.theta >= kPiD ? kPiD : std::min(kPiD, c.theta + kConeSlack);
+  m.cos_o = theta >= kPiD ? -1.0f : cos_at_most(theta);
   return m;
+}
+
+// The half angle of n's normal cone; a flat emitter's (cos_o 1) and a point light's (-1) without acos.
+double theta_of(const glsl::EmitterNode& n) {
+  if (n.cos_o >= 1.0f) return 0.0;
+  if (n.cos_o <= -1.0f) return kPiD;
+  return std::acos(double(n.cos_o));
+}
+
+}  // namespace
+
+glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::EmitterNode& b) {
+  double theta = 0.0;
+  return merge_nodes(a, theta_of(a), b, theta_of(b), theta);
 }
 
 EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
@@ -113,29 +145,40 @@ EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
   if (n > (size_t(1) << 30)) throw Error("emitter tree: too many lights (" + std::to_string(n) + ")");
   tree.leaves = n == 0 ? 0u : std::bit_ceil(uint32_t(n));
   tree.directional_count = uint32_t(directional.size());
-  tree.nodes.assign(size_t(2) * tree.leaves + directional.size(), empty_node());
+  const size_t node_count = size_t(2) * tree.leaves + directional.size();
+  tree.nodes.reserve(node_count);
+  advise_huge_pages(tree.nodes.data(), node_count * sizeof(glsl::EmitterNode));
+  tree.nodes.resize(node_count);  // unwritten: every node is written once below
+  if (tree.leaves > 0) tree.nodes[0] = empty_node();
 
-  // Morton order of the centres; the entry in the low word breaks ties (and makes keys unique).
+  // Morton order of the centres, ties by entry: a stable radix sort of the codes alone, since the
+  // entries come in ascending order.
   const MortonGrid grid = MortonGrid::over(centres);
   std::vector<uint64_t> keys(n);
   parallel_range(0, n, [&](size_t i) {
     const glsl::EmitterNode& l = lights[in_tree[i]];
-    keys[i] = (uint64_t(grid.code(0.5f * (l.lo + l.hi))) << 32) | in_tree[i];
+    keys[i] = grid.code(0.5f * (l.lo + l.hi));
   });
-  tbb::parallel_sort(keys.begin(), keys.end());
+  radix_sort_pairs(keys, in_tree, 0, kMortonBits);
 
   const uint32_t leaves = tree.leaves;
-  parallel_range(0, n, [&](size_t k) {
-    uint32_t entry = uint32_t(keys[k]);
+  std::vector<double> theta(size_t(2) * leaves, 0.0);
+  parallel_range(0, leaves, [&](size_t k) {
+    if (k >= n) {  // padding
+      tree.nodes[leaves + k] = empty_node();
+      return;
+    }
+    uint32_t entry = in_tree[k];
     glsl::EmitterNode leaf = lights[entry];
     leaf.entry = entry;
     tree.nodes[leaves + k] = leaf;
+    theta[leaves + k] = theta_of(leaf);
     tree.node_of_entry[entry] = uint32_t(leaves + k);
   });
   // Bottom up, one level at a time: a level's nodes are independent.
   for (uint32_t first = leaves / 2; first >= 1; first /= 2) {
     parallel_range(first, size_t(2) * first, [&](size_t i) {
-      tree.nodes[i] = merge_emitter_nodes(tree.nodes[2 * i], tree.nodes[2 * i + 1]);
+      tree.nodes[i] = merge_nodes(tree.nodes[2 * i], theta[2 * i], tree.nodes[2 * i + 1], theta[2 * i + 1], theta[i]);
     });
   }
   for (uint32_t k = 0; k < directional.size(); ++k) {

@@ -16,16 +16,20 @@
 #include <glm/glm.hpp>
 
 #include "core/lights/light_layout.h"
+#include "core/util/memory.h"
 
 namespace sst {
 
 // Extra half angle (radians) of every merged cone, over the rounding of its float axis and cosine.
 inline constexpr double kConeSlack = 1e-6;
 
+// The tree's nodes: written once by the build, in parallel, without a serial fill before.
+using EmitterNodes = UninitializedVector<glsl::EmitterNode>;
+
 struct EmitterTree {
   // 2 leaves + directional lights: node 0 unused, 1 .. 2 leaves - 1 the heap, then one node per
   // directional light (what light_tree[] holds on the GPU).
-  std::vector<glsl::EmitterNode> nodes;
+  EmitterNodes nodes;
   uint32_t leaves = 0;             // leaf slots, a power of two; 0 when no light is in the tree
   uint32_t directional_count = 0;
   std::vector<uint32_t> node_of_entry;  // per distribution entry: its node, or LIGHT_NONE

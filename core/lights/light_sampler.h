@@ -31,7 +31,7 @@ struct PackedLights {
   std::vector<glsl::LightCdfEntry> distribution;   // over all lights (empty when no light emits)
   std::vector<glsl::LightEmissive> emissive;       // the emissive triangles
   std::vector<uint32_t> light_of_triangle;         // per scene triangle; LIGHT_NONE if no light
-  std::vector<glsl::EmitterNode> tree;             // the emitter tree (tree and slc samplers)
+  EmitterNodes tree;                               // the emitter tree (tree and slc samplers)
 
   size_t bytes() const;
 };

@@ -28,7 +28,6 @@
 
 SST_BEGIN
 
-SST_CONSTANT int kMortonBits = 30;
 SST_CONSTANT int kNormalCodeBits = 9;
 SST_CONSTANT int kIdBits = 64 - kMortonBits - kNormalCodeBits;  // 25
 SST_CONSTANT int kNormalCodeCount = 1 << kNormalCodeBits;       // 512

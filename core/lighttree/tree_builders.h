@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
-#include "core/lighttree/radix_sort.h"
+#include "core/math/radix_sort.h"
 #include "core/lighttree/substitute.h"
 
 namespace sst {

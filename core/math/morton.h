@@ -8,6 +8,8 @@
 
 SST_BEGIN
 
+SST_CONSTANT int kMortonBits = 30;
+
 // Spreads the low 10 bits of x so that two zero bits follow each one.
 SST_FUNC uint expand_bits_10(uint x) {
   x &= 0x3FFu;

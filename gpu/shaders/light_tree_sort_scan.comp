@@ -3,7 +3,7 @@
 // Radix sort of the GPU light-tree build, pass step 2 of 3: one workgroup per digit turns its row
 // of per-tile counts into exclusive offsets within the digit, and writes the digit's total (the
 // scatter adds the totals of the smaller digits), the offsets exclusive_offsets in
-// core/lighttree/radix_sort.cpp computes for its blocks. Each invocation scans a run of
+// core/math/radix_sort.cpp computes for its blocks. Each invocation scans a run of
 // ceil(tile_count / 256) counts: short loops however many VPLs there are (lavapipe ends an
 // invocation's loops after 65535 iterations; 2^25 VPLs make runs of 512).
 //

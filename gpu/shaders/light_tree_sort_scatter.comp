@@ -3,13 +3,13 @@
 // Radix sort of the GPU light-tree build, pass step 3 of 3: every key of a tile goes to
 //   (keys of smaller digits) + (its digit's keys in earlier tiles) + (its rank among the equal
 // digits earlier in its tile),
-// the scatter of core/lighttree/radix_sort.cpp, which writes a block's elements in input order:
+// the scatter of core/math/radix_sort.cpp, which writes a block's elements in input order:
 // the pass is stable, so the sort's result is the one stable order of the keys.
 //
 // Bindings: 0 uvec2 keys_in[], 1 uint ids_in[], 2 uint counts[] (scanned), 3 uint digit_totals[],
 // 4 uvec2 keys_out[], 5 uint ids_out[]. Push: count, shift, tile_count.
 #include "core/lighttree/light_tree_build_layout.h"
-#include "core/lighttree/radix_digit.h"
+#include "core/math/radix_digit.h"
 
 layout(local_size_x = LTB_GROUP_SIZE) in;
 layout(std430, binding = 0) readonly buffer KeysIn { uvec2 keys_in[]; };

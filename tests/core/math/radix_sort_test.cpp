@@ -1,4 +1,4 @@
-#include "core/lighttree/radix_sort.h"
+#include "core/math/radix_sort.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>

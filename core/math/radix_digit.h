@@ -1,8 +1,8 @@
 // The digit of a 64-bit key that one pass of an LSD radix sort orders by, for both backends'
 // sorts of the light-tree build (shared C++/GLSL source, core/math/cpu_gpu.h). The passes
 // themselves (histograms, scan, scatter) are per backend: radix_sort.cpp, light_tree_sort_*.comp.
-#ifndef SST_CORE_LIGHTTREE_RADIX_DIGIT_H
-#define SST_CORE_LIGHTTREE_RADIX_DIGIT_H
+#ifndef SST_CORE_MATH_RADIX_DIGIT_H
+#define SST_CORE_MATH_RADIX_DIGIT_H
 #include "core/math/cpu_gpu.h"
 
 SST_BEGIN
@@ -30,4 +30,4 @@ inline uint radix_digit(uint64_t key, uint shift, uint mask) {
 }  // namespace sst
 #endif
 
-#endif  // SST_CORE_LIGHTTREE_RADIX_DIGIT_H
+#endif  // SST_CORE_MATH_RADIX_DIGIT_H

@@ -1,11 +1,11 @@
-#include "core/lighttree/radix_sort.h"
+#include "core/math/radix_sort.h"
 
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <string>
 
-#include "core/lighttree/radix_digit.h"
+#include "core/math/radix_digit.h"
 #include "core/util/error.h"
 
 namespace sst {

@@ -1,0 +1,45 @@
+// Memory for large arrays that are written once and read often (light-tree nodes): no
+// initialisation that the writer will overwrite, and huge pages where the kernel offers them.
+#pragma once
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <vector>
+
+namespace sst {
+
+// Asks the kernel to back the whole 2 MiB pages inside [p, p + bytes) with huge pages, before the
+// array is first written: one page fault per 2 MiB instead of one per 4 KiB, which on this
+// project's virtual machines costs more than filling the memory. A hint only: no effect where
+// transparent huge pages are off or unsupported, or for arrays under 2 MiB.
+void advise_huge_pages(void* p, size_t bytes);
+
+// std::allocator whose value-less construct() default-initialises: resize() of a vector of
+// trivial elements then leaves them unwritten, for a parallel writer to fill (and to touch the
+// pages first on the thread that uses them).
+template <class T>
+struct DefaultInitAllocator : std::allocator<T> {
+  using std::allocator<T>::allocator;
+  DefaultInitAllocator() = default;
+  template <class U>
+  DefaultInitAllocator(const DefaultInitAllocator<U>&) noexcept {}
+  template <class U>
+  struct rebind {
+    using other = DefaultInitAllocator<U>;
+  };
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+// A vector of trivial elements whose resize() writes nothing.
+template <class T>
+using UninitializedVector = std::vector<T, DefaultInitAllocator<T>>;
+
+}  // namespace sst

@@ -125,7 +125,7 @@ glsl::EmitterNode merge_emitter_nodes(const glsl::EmitterNode& a, const glsl::Em
   return merge_nodes(a, theta_of(a), b, theta_of(b), theta);
 }
 
-EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
+EmitterTree build_emitter_tree(std::span<const glsl::EmitterNode> lights) {
   EmitterTree tree;
   tree.node_of_entry.assign(lights.size(), LIGHT_NONE);
   std::vector<uint32_t> in_tree;
@@ -146,9 +146,7 @@ EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
   tree.leaves = n == 0 ? 0u : std::bit_ceil(uint32_t(n));
   tree.directional_count = uint32_t(directional.size());
   const size_t node_count = size_t(2) * tree.leaves + directional.size();
-  tree.nodes.reserve(node_count);
-  advise_huge_pages(tree.nodes.data(), node_count * sizeof(glsl::EmitterNode));
-  tree.nodes.resize(node_count);  // unwritten: every node is written once below
+  resize_on_huge_pages(tree.nodes, node_count);  // unwritten: every node is written once below
   if (tree.leaves > 0) tree.nodes[0] = empty_node();
 
   // Morton order of the centres, ties by entry: a stable radix sort of the codes alone, since the
@@ -162,10 +160,12 @@ EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights) {
   radix_sort_pairs(keys, in_tree, 0, kMortonBits);
 
   const uint32_t leaves = tree.leaves;
-  std::vector<double> theta(size_t(2) * leaves, 0.0);
+  UninitializedVector<double> theta;  // written for every node with the node
+  resize_on_huge_pages(theta, size_t(2) * leaves);
   parallel_range(0, leaves, [&](size_t k) {
     if (k >= n) {  // padding
       tree.nodes[leaves + k] = empty_node();
+      theta[leaves + k] = 0.0;
       return;
     }
     uint32_t entry = in_tree[k];

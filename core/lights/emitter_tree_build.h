@@ -38,7 +38,7 @@ struct EmitterTree {
 // The tree over `lights`, one leaf-form node per distribution entry: `entry` set to its index,
 // flags EMITTER_DIRECTIONAL for a directional light (kept beside the tree), box, cone and
 // intensity filled in. A light of intensity 0 (or not finite) gets no node. Parallel (oneTBB).
-EmitterTree build_emitter_tree(const std::vector<glsl::EmitterNode>& lights);
+EmitterTree build_emitter_tree(std::span<const glsl::EmitterNode> lights);
 
 // A cut of the tree (`nodes`: light_tree[] with `leaves` leaf slots and `directional_count`
 // directional lights after them): nodes whose subtrees are disjoint and hold every light of

@@ -1,5 +1,8 @@
 #include "core/lights/light_sampler.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -134,34 +137,45 @@ LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&
     material_radiance[m] = luminance(mat.emission) * tex;
     material_scale[m] = material_radiance[m] * kPi * (mat.double_sided ? 2.0f : 1.0f);
   }
-  // An upper bound of the entries, reserved up front: growing these vectors copied them about
-  // twice over (a fifth of a million-triangle build).
-  size_t emissive_bound = 0;
-  for (uint32_t m : scene.triangle_material) emissive_bound += material_scale[m] > 0.0f;
-  std::vector<double> weights;
-  std::vector<glsl::EmitterNode> leaves;
-  weights.reserve(scene.lights.size() + emissive_bound);
-  if (tree) leaves.reserve(scene.lights.size() + emissive_bound);
-  packed_.emissive.reserve(emissive_bound);
-  for (const PunctualLight& light : scene.lights) {
-    weights.push_back(punctual_power(light, scene.bounds));
-    if (tree) leaves.push_back(punctual_leaf(light));
+  // Emissive triangles take consecutive entries after the punctual lights, in triangle order:
+  // each triangle's area (0: no light) in parallel, their ranks in one serial pass, then every
+  // entry in parallel. Large scenes spend their light setup here.
+  const size_t triangle_count = scene.triangles.size();
+  UninitializedVector<float> area(triangle_count);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, triangle_count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t != r.end(); ++t) {
+      float a = material_scale[scene.triangle_material[t]] > 0.0f ? triangle_area(scene, uint32_t(t)) : 0.0f;
+      area[t] = a > 0.0f ? a : 0.0f;
+    }
+  });
+  const uint32_t punctual_count = uint32_t(scene.lights.size());
+  packed_.light_of_triangle.reserve(triangle_count);
+  for (size_t t = 0; t < triangle_count; ++t) {
+    if (!(area[t] > 0.0f)) {
+      packed_.light_of_triangle.push_back(LIGHT_NONE);
+      continue;
+    }
+    packed_.light_of_triangle.push_back(punctual_count + uint32_t(packed_.emissive.size()));
+    packed_.emissive.push_back({uint32_t(t), area[t]});
   }
-  packed_.light_of_triangle.assign(scene.triangles.size(), LIGHT_NONE);
-  for (uint32_t t = 0; t < scene.triangles.size(); ++t) {
-    uint32_t m = scene.triangle_material[t];
-    float scale = material_scale[m];
-    if (!(scale > 0.0f)) continue;
-    float area = triangle_area(scene, t);
-    if (!(area > 0.0f)) continue;
-    packed_.light_of_triangle[t] = uint32_t(weights.size());
-    weights.push_back(double(area) * scale);
-    if (tree) leaves.push_back(triangle_leaf(scene, t, material_radiance[m], scene.materials[m].double_sided, area));
-    glsl::LightEmissive e{};
-    e.triangle = t;
-    e.area = area;
-    packed_.emissive.push_back(e);
+  const size_t emissive_count = packed_.emissive.size();
+  std::vector<double> weights(punctual_count + emissive_count);
+  UninitializedVector<glsl::EmitterNode> leaves;
+  if (tree) resize_on_huge_pages(leaves, weights.size());
+  for (uint32_t i = 0; i < punctual_count; ++i) {
+    weights[i] = punctual_power(scene.lights[i], scene.bounds);
+    if (tree) leaves[i] = punctual_leaf(scene.lights[i]);
   }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, emissive_count, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const glsl::LightEmissive& e = packed_.emissive[k];
+      uint32_t m = scene.triangle_material[e.triangle];
+      weights[punctual_count + k] = double(e.area) * material_scale[m];
+      if (tree)
+        leaves[punctual_count + k] =
+            triangle_leaf(scene, e.triangle, material_radiance[m], scene.materials[m].double_sided, e.area);
+    }
+  });
   distribution_ = DiscreteDistribution(weights);
 
   glsl::LightHeader& h = packed_.header;

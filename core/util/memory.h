@@ -42,4 +42,12 @@ struct DefaultInitAllocator : std::allocator<T> {
 template <class T>
 using UninitializedVector = std::vector<T, DefaultInitAllocator<T>>;
 
+// An empty UninitializedVector resized to n elements on huge pages where offered, unwritten.
+template <class T>
+void resize_on_huge_pages(UninitializedVector<T>& v, size_t n) {
+  v.reserve(n);
+  advise_huge_pages(v.data(), n * sizeof(T));
+  v.resize(n);
+}
+
 }  // namespace sst

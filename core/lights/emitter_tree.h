@@ -149,22 +149,31 @@ SST_FUNC float emitter_top_total(LIGHT_CTX_PARAM vec3 p, vec3 n, SST_OUT(float) 
 // block's cut (core/manylight/rtslc/rtslc_direct.h).
 SST_FUNC uint emitter_tree_descend(LIGHT_CTX_PARAM uint node, vec3 p, vec3 n, SST_INOUT(float) u, SST_INOUT(float) prob) {
   uint leaves = LIGHT_HEADER.tree_leaves;
+  // Locals, not the references: in C++ a write through a float& may alias the tree's floats.
+  float v = u;
+  float q = prob;
   while (node < leaves) {
     vec2 cw = emitter_child_weights(LIGHT_CTX node, p, n);
     float sum = cw.x + cw.y;
-    if (!(sum > 0.0f)) return LIGHT_NONE;
+    if (!(sum > 0.0f)) {
+      u = v;
+      prob = q;
+      return LIGHT_NONE;
+    }
     float p_left = cw.x / sum;
     float p_right = cw.y / sum;
-    if (u < p_left) {
+    if (v < p_left) {
       node = 2u * node;
-      u = min(u / p_left, kOneMinusEpsilon);
-      prob *= p_left;
+      v = min(v / p_left, kOneMinusEpsilon);
+      q *= p_left;
     } else {
       node = 2u * node + 1u;
-      u = clamp((u - p_left) / (1.0f - p_left), 0.0f, kOneMinusEpsilon);
-      prob *= p_right;
+      v = clamp((v - p_left) / (1.0f - p_left), 0.0f, kOneMinusEpsilon);
+      q *= p_right;
     }
   }
+  u = v;
+  prob = q;
   return LIGHT_TREE(node).entry;
 }
 

@@ -121,7 +121,8 @@ void split_parameters(RunSpec& run, const nlohmann::json& merged, const std::str
       run.time_budget_ms = value.get<double>();
     } else if (contains(option_names, key)) {
       run.options[key] = value;
-    } else if (std::any_of(info.params.begin(), info.params.end(), [&](const ParamInfo& p) { return p.name == key; })) {
+    } else if (std::any_of(info.params.begin(), info.params.end(),
+                           [&name = key](const ParamInfo& p) { return p.name == name; })) {
       run.method_params[key] = value;
     }
   }

@@ -29,7 +29,8 @@ nlohmann::json method_overrides(const nlohmann::json& cfg, const std::string& me
   const MethodInfo& info = find_method(method);
   for (const auto& [key, value] : cfg.items()) {
     if (key == "kind" || key == "spp" || key == "seed" || key == "light_sampler") continue;
-    bool known = std::any_of(info.params.begin(), info.params.end(), [&](const ParamInfo& p) { return p.name == key; });
+    bool known = std::any_of(info.params.begin(), info.params.end(),
+                             [&name = key](const ParamInfo& p) { return p.name == name; });
     if (!known) throw Error("reference: '" + key + "' is not a parameter of its method '" + method + "'");
     params[key] = value;
   }

@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <set>
 #include <system_error>
 
@@ -204,11 +205,62 @@ constexpr uint64_t kMaxReadPixels = uint64_t(1) << 28;
 // from them (4 + 2 + 4, rounded up).
 constexpr uint64_t kReadBytesPerValue = 12;
 
+// "" when every attribute of an OpenEXR file's header(s) declares a size that fits in the file,
+// else what does not. OpenEXR 3.1 (through OpenImageIO 2.4) allocates an attribute's declared
+// size before reading it, so a 500-byte file could ask for 2 GB (found by fuzzing); the headers
+// are walked here first: per attribute a name and a type (null-terminated, under 256 bytes), a
+// 32-bit size and the value; an empty name ends a header, and multi-part files (version flag
+// 0x1000) end their list of headers with an empty one.
+std::string check_exr_attribute_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char head[8];
+  if (!in.read(reinterpret_cast<char*>(head), 8)) return "";
+  if (!(head[0] == 0x76 && head[1] == 0x2F && head[2] == 0x31 && head[3] == 0x01)) return "";  // not OpenEXR
+  const bool multipart = (head[5] & 0x10) != 0;
+  in.seekg(0, std::ios::end);
+  const uint64_t file_size = uint64_t(in.tellg());
+  uint64_t pos = 8;
+  auto read_name = [&](std::string& name) {
+    name.clear();
+    in.seekg(std::streamoff(pos));
+    for (char c; in.get(c);) {
+      ++pos;
+      if (c == '\0') return true;
+      if (name.size() >= 255) return false;
+      name.push_back(c);
+    }
+    return false;
+  };
+  for (int header = 0; header < 65536; ++header) {
+    std::string name, type;
+    bool first = true;
+    for (;;) {
+      if (!read_name(name)) return "truncated or malformed header";
+      if (name.empty()) break;
+      first = false;
+      if (!read_name(type)) return "truncated or malformed header";
+      unsigned char size_bytes[4];
+      if (!in.read(reinterpret_cast<char*>(size_bytes), 4)) return "truncated header";
+      pos += 4;
+      const int32_t size = int32_t(uint32_t(size_bytes[0]) | uint32_t(size_bytes[1]) << 8 |
+                                   uint32_t(size_bytes[2]) << 16 | uint32_t(size_bytes[3]) << 24);
+      if (size < 0 || pos + uint64_t(size) > file_size)
+        return "header attribute '" + name + "' declares " + std::to_string(size) + " bytes, " +
+               std::to_string(file_size - pos) + " follow";
+      pos += uint64_t(size);
+    }
+    if (!multipart || first) return "";
+  }
+  return "too many headers";
+}
+
 std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("cannot read image " + path + ": no such file");
   if (fs::is_directory(path, ec)) throw Error("cannot read image " + path + ": is a directory");
   if (!fs::is_regular_file(path, ec)) throw Error("cannot read image " + path + ": not a regular file");  // a FIFO blocks
+  if (std::string why = check_exr_attribute_sizes(path); !why.empty())
+    throw Error("cannot read image " + path + ": invalid OpenEXR file: " + why);
   OIIO::ImageSpec config;
   // Keep PNG colour values as stored; OIIO would otherwise premultiply by alpha.
   config.attribute("oiio:UnassociatedAlpha", 1);

@@ -1142,8 +1142,9 @@ class GltfConverter {
       if (size > size_t(INT32_MAX)) err = "image larger than 2 GiB";
       else if (!tinygltf::LoadImageData(&decoded[i], image_ids[i], &err, &warn, 0, 0, bytes, int(size), nullptr))
         // tinygltf's own text only says "unsupported image format"; stb's reason (a thread-local
-        // of this thread, which just decoded) says what is wrong.
-        err = stbi_failure_reason() ? stbi_failure_reason() : "cannot decode";
+        // of this thread, which just decoded) says what is wrong. Some corrupt PNGs leave that
+        // reason empty, and an empty error here once let the undecoded image through (fuzzing).
+        err = stbi_failure_reason() && *stbi_failure_reason() ? stbi_failure_reason() : "cannot decode";
       else if (!valid_decoded(decoded[i]))
         err = "unsupported pixel layout (" + std::to_string(decoded[i].component) + " channels, " +
               std::to_string(decoded[i].bits) + " bits)";

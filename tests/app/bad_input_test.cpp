@@ -11,6 +11,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/render/render_options.h"
@@ -263,6 +264,29 @@ TEST(BadInput, CompareRefusesADecompressionBombFromItsHeader) {
   write_file(dir / "small.png", png_header_only(1, 1));
   expect_error(eval("compare " + (dir / "bomb.png").string() + " " + (dir / "small.png").string()),
                (dir / "bomb.png").string() + ": 30000x30000 pixels is too large");
+}
+
+TEST(BadInput, ATextureStbCannotDecodeWithoutAReasonIsRefused) {
+  // Found by fuzz_texture: stb_image fails on this 119-byte PNG (a run of 0xFF after its IDAT)
+  // but leaves its failure reason empty; the empty error let the undecoded image through to a
+  // null read. The bytes are the fuzzer's, from tests/fuzz/corpus/texture/.
+  auto dir = test::temp_dir();
+  std::ifstream in(std::string(SST_SOURCE_DIR) + "/tests/fuzz/corpus/texture/corrupt_idat_empty_reason.png", std::ios::binary);
+  write_file(dir / "bad.png", std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()));
+  fs::path gltf = textured_triangle(dir, "bad.png");
+  test::expect_one_line_naming(test::load_error(gltf), gltf, "cannot decode image 'bad.png': cannot decode");
+}
+
+TEST(BadInput, CompareRefusesAnExrAttributeLongerThanTheFile) {
+  // Found by fuzz_image: OpenEXR allocated an attribute's declared size (here 1.9 GB) before
+  // reading it. A minimal header: magic, version 2, one string attribute declaring 2^30 bytes.
+  auto dir = test::temp_dir();
+  std::string exr("\x76\x2f\x31\x01\x02\x00\x00\x00", 8);
+  exr += std::string("comments\0string\0", 16) + std::string("\x00\x00\x00\x40", 4) + "abc";
+  write_file(dir / "attr.exr", exr);
+  write_file(dir / "small.png", png_header_only(1, 1));
+  expect_error(eval("compare " + (dir / "attr.exr").string() + " " + (dir / "small.png").string()),
+               "invalid OpenEXR file: header attribute 'comments' declares 1073741824 bytes, 3 follow");
 }
 
 TEST(BadInput, ImageLargerThanTheMachineCanHoldIsRefusedBeforeRendering) {

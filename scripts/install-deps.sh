@@ -15,6 +15,7 @@ PACKAGES=(
   parallel
   libkainjow-mustache-dev  # the report's HTML template engine (core/eval/report)
   ffmpeg                   # animated previews (MP4) of rendered sequences
+  clang libclang-rt-14-dev llvm  # the fuzz harnesses: libFuzzer, ASan and UBSan runtimes, symbolizer (scripts/fuzz.sh)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

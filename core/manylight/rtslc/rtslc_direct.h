@@ -15,6 +15,7 @@
 #define SST_CORE_MANYLIGHT_RTSLC_RTSLC_DIRECT_H
 #include "core/lights/emitter_tree.h"
 #include "core/manylight/estimator.h"
+#include "core/manylight/rtslc/rtslc_estimate.h"
 #include "core/pt/trace_path.h"
 
 SST_BEGIN
@@ -25,15 +26,11 @@ SST_FUNC vec3 estimate_rtslc_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARA
   vec3 sum = vec3(0.0f);
   uint max_size = ML_PARAMS.rtslc_direct_cut_max_size;
   if (max_size == 0u) return sum;
-  uint r = ML_PARAMS.rtslc_interleave;
-  uint slots = r * r;
-  uint x = uint(sp.x);
-  uint y = uint(sp.y);
-  uint slot = (r * (y % r) + x % r + ML_PARAMS.rtslc_frame_index) % slots;
-  uint block = (y / ML_PARAMS.cut_block_size) * ML_PARAMS.cut_blocks_x + x / ML_PARAMS.cut_block_size;
-  uint first = ML_PARAMS.rtslc_direct_cut_first + block * max_size;
-  uint size = ML_CUT_SIZE(ML_PARAMS.rtslc_direct_sizes_first + block);
-  for (uint i = slot; i < size; i += slots) {
+  RtslcPixelShare share = rtslc_pixel_share(ML_CTX sp);
+  uint slots = share.slots;
+  uint first = ML_PARAMS.rtslc_direct_cut_first + share.block * max_size;
+  uint size = ML_CUT_SIZE(ML_PARAMS.rtslc_direct_sizes_first + share.block);
+  for (uint i = share.slot; i < size; i += slots) {
     vec2 u = pixel_sampler_get2d(ps);
     float prob = 1.0f;
     uint entry = emitter_tree_descend(LIGHT_CTX ML_CUT_NODE(first + i), sp.p, sp.basis.n, u.x, prob);

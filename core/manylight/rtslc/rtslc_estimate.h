@@ -106,18 +106,34 @@ SST_FUNC RtslcSample rtslc_traverse(ML_CTX_PARAM uint from, vec3 x, vec3 n, SST_
   return s;
 }
 
+// Where pixel sp's share of its block's cut is: the cut nodes i = slot, slot + slots, ... (slots =
+// r^2 with interleaving rate r; every node without), each estimate weighted by slots. The VPL cut
+// and the emitter cut (rtslc_direct.h) of a block are shared out alike.
+struct RtslcPixelShare {
+  uint block;
+  uint slot;
+  uint slots;
+};
+
+SST_FUNC RtslcPixelShare rtslc_pixel_share(ML_CTX_PARAM SST_IN(ShadingPoint) sp) {
+  RtslcPixelShare share;
+  uint r = ML_PARAMS.rtslc_interleave;
+  uint x = uint(sp.x);
+  uint y = uint(sp.y);
+  share.slots = r * r;
+  share.slot = (r * (y % r) + x % r + ML_PARAMS.rtslc_frame_index) % share.slots;
+  share.block = (y / ML_PARAMS.cut_block_size) * ML_PARAMS.cut_blocks_x + x / ML_PARAMS.cut_block_size;
+  return share;
+}
+
 SST_FUNC IndirectEstimate estimate_rtslc(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_INOUT(PixelSampler) ps) {
   IndirectEstimate e = indirect_estimate_zero();
   if (ML_PARAMS.tree_root == kNoNode) return e;
-  uint r = ML_PARAMS.rtslc_interleave;
-  uint slots = r * r;
-  uint x = uint(sp.x);
-  uint y = uint(sp.y);
-  uint slot = (r * (y % r) + x % r + ML_PARAMS.rtslc_frame_index) % slots;
-  uint block = (y / ML_PARAMS.cut_block_size) * ML_PARAMS.cut_blocks_x + x / ML_PARAMS.cut_block_size;
-  uint first = block * ML_PARAMS.cut_max_size;
-  uint size = ML_CUT_SIZE(block);
-  for (uint i = slot; i < size; i += slots) {
+  RtslcPixelShare share = rtslc_pixel_share(ML_CTX sp);
+  uint slots = share.slots;
+  uint first = share.block * ML_PARAMS.cut_max_size;
+  uint size = ML_CUT_SIZE(share.block);
+  for (uint i = share.slot; i < size; i += slots) {
     RtslcSample s = rtslc_traverse(ML_CTX ML_CUT_NODE(first + i), sp.p, sp.basis.n, ps);
     e.nodes_visited += s.nodes_visited;
     if (s.node == kNoNode) continue;

@@ -11,6 +11,7 @@
 #include "core/manylight/many_light_methods.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
+#include "core/util/error.h"
 
 namespace sst::test {
 
@@ -66,6 +67,16 @@ inline int z_test_failures(const Image& test, const Image& variance, const Image
     if (sd == 0.0 ? std::abs(diff) > 1e-6 * (1.0 + std::abs(expected.data[i])) : std::abs(diff) / sd > z_max) ++failures;
   }
   return failures;
+}
+
+// The message of the sst::Error that creating `method` with `params` throws, or "no error".
+inline std::string create_method_error(const std::string& method, const nlohmann::json& params) {
+  try {
+    create_method(method, params);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "no error";
 }
 
 }  // namespace sst::test

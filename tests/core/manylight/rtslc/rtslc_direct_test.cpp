@@ -12,6 +12,7 @@
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
 #include "tests/analytic_scenes.h"
+#include "tests/core/manylight/many_light_test_util.h"
 #include "tests/stat_util.h"
 
 namespace sst {
@@ -119,14 +120,7 @@ TEST(RtslcDirect, CutsNeedTheEmitterTreeAndValidParameters) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("--light-sampler tree or slc"), std::string::npos) << e.what();
   }
-  auto message = [](const nlohmann::json& p) {
-    try {
-      create_method("rtslc", p);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [](const nlohmann::json& p) { return test::create_method_error("rtslc", p); };
   EXPECT_NE(message({{"direct_light", "tree"}}).find("'direct_light'"), std::string::npos);
   EXPECT_NE(message({{"direct_cut_size", 0}}).find("direct_cut_size"), std::string::npos);
   EXPECT_NE(message({{"direct_cut_size", 33}}).find("direct_cut_size"), std::string::npos);

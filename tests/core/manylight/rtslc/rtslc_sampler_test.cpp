@@ -233,14 +233,7 @@ TEST(RtslcSampler, ExtremesGiveFiniteImages) {
 }
 
 TEST(RtslcSampler, BadParametersNameTheParameter) {
-  auto message = [](const nlohmann::json& p) {
-    try {
-      create_method("rtslc", p);
-    } catch (const Error& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [](const nlohmann::json& p) { return test::create_method_error("rtslc", p); };
   EXPECT_NE(message({{"tree", "radix"}}).find("tree"), std::string::npos);
   EXPECT_NE(message({{"cut_size", 33}}).find("cut_size"), std::string::npos);
   EXPECT_NE(message({{"cut_size", 0}}).find("cut_size"), std::string::npos);

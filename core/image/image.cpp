@@ -269,8 +269,13 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   // The header's size is checked before the pixels are allocated: a PNG of a few dozen bytes can
   // declare 30000x30000 pixels (a decompression bomb).
   const OIIO::ImageSpec& spec = in->spec();
-  const uint64_t pixels = uint64_t(std::max(spec.width, 0)) * uint64_t(std::max(spec.height, 0));
-  const uint64_t bytes = pixels * uint64_t(std::max(spec.nchannels, 1)) * kReadBytesPerValue;
+  // A header may declare a negative size (an OpenEXR data window whose max lies below its min;
+  // found by fuzzing), which the products below would turn into an enormous one.
+  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
+    throw Error("cannot read image " + path + ": invalid size " + std::to_string(spec.width) + "x" +
+                std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) + " channels");
+  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
+  const uint64_t bytes = pixels * uint64_t(spec.nchannels) * kReadBytesPerValue;
   if (pixels > kMaxReadPixels || bytes > usable_memory_bytes() / 4)
     throw Error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
                 " pixels is too large (at most " + std::to_string(kMaxReadPixels) + " pixels, and a quarter of this machine's memory)");

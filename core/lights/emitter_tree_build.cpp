@@ -77,10 +77,6 @@ void parallel_range(size_t begin, size_t end, const F& f) {
 
 bool usable(const glsl::EmitterNode& n) { return n.intensity > 0.0f && std::isfinite(n.intensity); }
 
-}  // namespace
-
-namespace {
-
 // Merges a and b whose normal cones have half angles theta_a and theta_b (the doubles the build
 // keeps beside the nodes, so no level reads a cone back through its float cosine, whose steps
 // near pi are wider than the slack); the merged half angle, slack included, goes to `theta`.
@@ -106,7 +102,7 @@ glsl::EmitterNode merge_nodes(const glsl::EmitterNode& a, double theta_a, const 
   }
   Cone c = cone_union({glm::dvec3(a.axis), theta_a}, {glm::dvec3(b.axis), theta_b});
   m.axis = vec3(c.axis);
-  theta = c.theta >= kPiD ? kPiD : std::min(kPiD, c.theta + kConeSlack);
+  theta = std::min(kPiD, c.theta + kConeSlack);
   m.cos_o = theta >= kPiD ? -1.0f : cos_at_most(theta);
   return m;
 }

@@ -136,11 +136,13 @@ void RtslcSampler::build(const VplLighting& lighting, StageTimer& timer, nlohman
                        {"blocks", cuts_.grid.count()},
                        {"mean_cut_size", cuts_.mean_size()}};
   set_cut_inputs(cuts_, inputs);
-  cut_nodes_ = cuts_.nodes;
-  cut_sizes_ = cuts_.sizes;
-  if (params_.direct_light == "cuts") build_direct_cuts(ctx, timer, counters, inputs);
-  inputs.cut_nodes = cut_nodes_;
-  inputs.cut_sizes = cut_sizes_;
+  if (params_.direct_light == "cuts") {
+    cut_nodes_ = cuts_.nodes;
+    cut_sizes_ = cuts_.sizes;
+    build_direct_cuts(ctx, timer, counters, inputs);
+    inputs.cut_nodes = cut_nodes_;
+    inputs.cut_sizes = cut_sizes_;
+  }
   inputs.params.rtslc_interleave = uint32_t(params_.interleave);
   inputs.params.rtslc_weights = weights_id(weights_);
   inputs.params.rtslc_frame_index = uint32_t(ctx.frame);

@@ -98,8 +98,8 @@ class RtslcSampler final : public TreeSamplerBase {
   RtslcParams params_;
   RtslcWeights weights_ = RtslcWeights::rtslc;  // params_.weights, parsed
   BlockCuts cuts_;  // built at each block's random pivot pixel
-  // The cuts as the estimators read them: cuts_' nodes and sizes, then (direct_light = cuts)
-  // those of the emitter-tree cuts.
+  // direct_light = cuts: the cuts as the estimators read them, cuts_' nodes and sizes followed by
+  // those of the emitter-tree cuts (otherwise the estimators read cuts_ itself).
   std::vector<uint32_t> cut_nodes_, cut_sizes_;
 };
 

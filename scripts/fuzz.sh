@@ -21,6 +21,9 @@ cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_CO
   "${launcher[@]}" -DSST_FUZZ=ON -DSST_ENABLE_VULKAN=OFF -DSST_BUILD_TESTS=OFF -DSST_BUILD_BENCHMARKS=OFF > /dev/null
 cmake --build build-fuzz -j2 --target "${harnesses[@]/#/fuzz_}"
 mkdir -p build-fuzz/findings
+# Every limit derived from the machine's memory is derived from 4 GiB instead, so that a run refuses
+# the same inputs on every machine (and repeats with --ci) and stays below libFuzzer's 2 GB heap limit.
+export SST_MEMORY_LIMIT_MB=4096
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 status=0
 for h in "${harnesses[@]}"; do

@@ -201,9 +201,9 @@ class QuietStderrForPng {
 
 // The most pixels an image we read may have: the largest render (render_pixel_limit's cap).
 constexpr uint64_t kMaxReadPixels = uint64_t(1) << 28;
-// Bytes per channel value while reading: the float values, the raw levels and the Image gathered
-// from them (4 + 2 + 4, rounded up).
-constexpr uint64_t kReadBytesPerValue = 12;
+// Bytes per channel value while reading: the file's own values (a double at most), the floats
+// converted from them and the Image gathered from those (8 + 4 + 4).
+constexpr uint64_t kReadBytesPerValue = 16;
 
 // "" when every attribute of an OpenEXR file's header(s) declares a size that fits in the file,
 // else what does not. OpenEXR 3.1 (through OpenImageIO 2.4) allocates an attribute's declared
@@ -254,6 +254,18 @@ std::string check_exr_attribute_sizes(const std::string& path) {
   return "too many headers";
 }
 
+// The buffer OpenImageIO allocates itself while reading a tiled file in its own types: one tile,
+// whose size the header declares. (Scanline files are read straight into our buffer.) Saturates
+// instead of wrapping.
+uint64_t oiio_tile_bytes(const OIIO::ImageSpec& spec) {
+  if (spec.tile_width < 1) return 0;
+  constexpr uint64_t kHuge = ~uint64_t(0);
+  auto mul = [](uint64_t a, uint64_t b) { return (b != 0 && a > kHuge / b) ? kHuge : a * b; };
+  return mul(mul(mul(uint64_t(spec.tile_width), uint64_t(std::max(spec.tile_height, 1))),
+                 uint64_t(std::max(spec.tile_depth, 1))),
+             uint64_t(spec.pixel_bytes(true)));
+}
+
 std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw Error("cannot read image " + path + ": no such file");
@@ -275,10 +287,16 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
     throw Error("cannot read image " + path + ": invalid size " + std::to_string(spec.width) + "x" +
                 std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) + " channels");
   const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-  const uint64_t bytes = pixels * uint64_t(spec.nchannels) * kReadBytesPerValue;
-  if (pixels > kMaxReadPixels || bytes > usable_memory_bytes() / 4)
+  if (pixels > kMaxReadPixels)
     throw Error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                " pixels is too large (at most " + std::to_string(kMaxReadPixels) + " pixels, and a quarter of this machine's memory)");
+                " pixels is too large (at most " + std::to_string(kMaxReadPixels) + " pixels)");
+  // At most 2^28 pixels x 2^31 channels x 16 bytes: the product fits in 64 bits.
+  const uint64_t values_bytes = pixels * uint64_t(spec.nchannels) * kReadBytesPerValue;
+  const uint64_t bytes = values_bytes + std::min(oiio_tile_bytes(spec), ~uint64_t(0) - values_bytes);
+  if (const uint64_t memory = usable_memory_bytes(); bytes > memory / 4)
+    throw Error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                " pixels of " + std::to_string(spec.nchannels) + " channels need " + std::to_string(bytes >> 20) +
+                " MiB to read, more than a quarter of this machine's memory (" + std::to_string(memory >> 20) + " MiB)");
   return in;
 }
 
@@ -291,21 +309,38 @@ bool is_display_encoded(const OIIO::ImageInput& in) {
 }
 
 // All channels of subimage 0 as floats; integer levels are divided by their maximum exactly.
+// The pixels are read in the file's own types into a zeroed buffer and converted here:
+// OpenImageIO's own conversion reads through a buffer of at least 256 whole scanlines, however few
+// the image has (a 1-row image 8 million pixels wide asked for 24 GiB; found by fuzzing), and
+// left uninitialised where a truncated file has no data.
 std::vector<float> read_all_channels(OIIO::ImageInput& in, const std::string& path) {
   const OIIO::ImageSpec& spec = in.spec();
-  const size_t count = size_t(spec.width) * spec.height * spec.nchannels;
-  std::vector<float> values(count);
-  auto fail = [&] { throw Error("cannot read image " + path + ": " + one_line(in.geterror())); };
-  if (spec.format.basetype == OIIO::TypeDesc::UINT8) {
-    std::vector<uint8_t> raw(count);
-    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data())) fail();
-    for (size_t i = 0; i < count; ++i) values[i] = float(raw[i]) / 255.0f;
-  } else if (spec.format.basetype == OIIO::TypeDesc::UINT16) {
-    std::vector<uint16_t> raw(count);
-    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT16, raw.data())) fail();
-    for (size_t i = 0; i < count; ++i) values[i] = float(raw[i]) / 65535.0f;
-  } else if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data())) {
-    fail();
+  const size_t pixels = size_t(spec.width) * size_t(spec.height);
+  const size_t channels = size_t(spec.nchannels);
+  const size_t pixel_bytes = spec.pixel_bytes(true);
+  std::vector<unsigned char> native(pixels * pixel_bytes);
+  if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UNKNOWN, native.data()))
+    throw Error("cannot read image " + path + ": " + one_line(in.geterror()));
+  std::vector<float> values(pixels * channels);
+  size_t offset = 0;
+  for (size_t c = 0; c < channels; ++c) {
+    const OIIO::TypeDesc type = spec.channelformat(int(c));
+    const unsigned char* from = native.data() + offset;
+    if (type == OIIO::TypeDesc::UINT8) {
+      for (size_t p = 0; p < pixels; ++p) values[p * channels + c] = float(from[p * pixel_bytes]) / 255.0f;
+    } else if (type == OIIO::TypeDesc::UINT16) {
+      for (size_t p = 0; p < pixels; ++p) {
+        uint16_t level;
+        std::memcpy(&level, from + p * pixel_bytes, sizeof(level));
+        values[p * channels + c] = float(level) / 65535.0f;
+      }
+    } else if (!OIIO::convert_image(1, spec.width, spec.height, 1, from, type, OIIO::stride_t(pixel_bytes),
+                                    OIIO::stride_t(pixel_bytes * size_t(spec.width)), OIIO::AutoStride,
+                                    values.data() + c, OIIO::TypeDesc::FLOAT, OIIO::stride_t(channels * sizeof(float)),
+                                    OIIO::stride_t(channels * sizeof(float) * size_t(spec.width)), OIIO::AutoStride)) {
+      throw Error("cannot read image " + path + ": channel " + std::to_string(c) + " has the unsupported type " + type.c_str());
+    }
+    offset += type.size();
   }
   return values;
 }

@@ -3,11 +3,15 @@
 #include <sys/utsname.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <fstream>
 #include <string>
 #include <thread>
+
+#include "core/util/error.h"
 
 namespace sst {
 namespace {
@@ -30,6 +34,14 @@ uint64_t usable_memory_bytes() {
   std::ifstream in("/sys/fs/cgroup/memory.max");
   unsigned long long limit = 0;
   if (in >> limit && limit > 0 && limit < bytes) bytes = limit;
+  if (const char* env = std::getenv("SST_MEMORY_LIMIT_MB"); env && *env) {
+    char* end = nullptr;
+    errno = 0;
+    const unsigned long long mb = std::strtoull(env, &end, 10);
+    if (*end != '\0' || errno == ERANGE || mb < 1 || mb > (uint64_t(1) << 40) || env[0] == '-')
+      throw Error("SST_MEMORY_LIMIT_MB must be a whole number of MiB from 1 to 2^40 (got '" + std::string(env) + "')");
+    if ((uint64_t(mb) << 20) < bytes) bytes = uint64_t(mb) << 20;
+  }
   return bytes;
 }
 

@@ -266,6 +266,19 @@ TEST(BadInput, CompareRefusesADecompressionBombFromItsHeader) {
                (dir / "bomb.png").string() + ": 30000x30000 pixels is too large");
 }
 
+TEST(BadInput, CompareCountsTheMemoryLimitOfTheEnvironment) {
+  // 2048 x 2048 x 3 channels needs 192 MiB to read: more than a quarter of 64 MiB. The same limit
+  // on every machine is what makes fuzzing refuse the same inputs everywhere.
+  auto dir = test::temp_dir();
+  write_file(dir / "big.png", png_header_only(2048, 2048, std::string("\x78\x9c\x03\x00\x00\x00\x00\x01", 8)));
+  write_file(dir / "small.png", png_header_only(1, 1));
+  const std::string args = "compare " + (dir / "big.png").string() + " " + (dir / "small.png").string();
+  expect_error(test::run_command("SST_MEMORY_LIMIT_MB=64 timeout 10 " + std::string(SST_EVAL_EXE) + " " + args),
+               (dir / "big.png").string() + ": 2048x2048 pixels of 3 channels need 192 MiB to read, more than a quarter of this machine's memory (64 MiB)");
+  expect_error(test::run_command("SST_MEMORY_LIMIT_MB=64k timeout 10 " + std::string(SST_EVAL_EXE) + " " + args),
+               "SST_MEMORY_LIMIT_MB must be a whole number of MiB from 1 to 2^40 (got '64k')");
+}
+
 TEST(BadInput, ATextureStbCannotDecodeWithoutAReasonIsRefused) {
   // Found by fuzz_texture: stb_image fails on this 119-byte PNG (a run of 0xFF after its IDAT)
   // but leaves its failure reason empty; the empty error let the undecoded image through to a

@@ -44,13 +44,13 @@ struct AcceptedExtension {
 constexpr std::array kAcceptedRequiredExtensions = {
     AcceptedExtension{"KHR_lights_punctual", "implemented: point, spot and directional lights"},
     AcceptedExtension{"KHR_materials_emissive_strength", "implemented: scales emissiveFactor"},
-    AcceptedExtension{"KHR_mesh_quantization", "implemented: integer POSITION/NORMAL/TEXCOORD_0"},
-    AcceptedExtension{"KHR_texture_transform", "only identity transforms (checked per texture)"},
+    AcceptedExtension{"KHR_mesh_quantization", "implemented: integer POSITION/NORMAL/TEXCOORD_n"},
+    AcceptedExtension{"KHR_texture_transform", "implemented: applied to the UVs (one per material)"},
     AcceptedExtension{"KHR_xmp_json_ld", "metadata only"},
 };
 // Extensions that are used, not required, and that we implement: no "ignored" warning.
-constexpr std::array<std::string_view, 3> kImplementedExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization"};
+constexpr std::array<std::string_view, 4> kImplementedExtensions = {
+    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform"};
 
 template <class Table>
 bool contains(const Table& table, std::string_view name) {
@@ -237,6 +237,25 @@ struct Instance {
   glm::dmat4 world;
 };
 
+// The UVs a material's textures are sampled at: TEXCOORD_<set>, mapped by the affine transform
+// u' = u[0] u + u[1] v + u[2], v' = v[0] u + v[1] v + v[2] (KHR_texture_transform).
+constexpr int kMaxUvSet = 7;
+struct UvMapping {
+  int set = 0;
+  std::array<double, 3> u{1.0, 0.0, 0.0};
+  std::array<double, 3> v{0.0, 1.0, 0.0};
+  bool operator==(const UvMapping&) const = default;
+  bool affine_identity() const { return u == UvMapping{}.u && v == UvMapping{}.v; }
+  std::vector<float> apply(const std::vector<float>& uvs) const {
+    std::vector<float> out(uvs.size());
+    for (size_t i = 0; i + 1 < uvs.size(); i += 2) {
+      out[i] = float(u[0] * uvs[i] + u[1] * uvs[i + 1] + u[2]);
+      out[i + 1] = float(v[0] * uvs[i] + v[1] * uvs[i + 1] + v[2]);
+    }
+    return out;
+  }
+};
+
 // One texture per (image, colour space, sampler) actually used.
 struct TextureKey {
   int image;
@@ -282,6 +301,8 @@ class GltfConverter {
     if (scene_.cameras.empty()) add_auto_camera();
     if (!scene_has_lights()) warnings_.add("scene has no lights: the image will be black");
     warnings_.append_to(scene_.warnings);
+    if (quantization_) uses_.insert("KHR_mesh_quantization");
+    scene_.gltf_features.assign(uses_.begin(), uses_.end());
   }
 
  private:
@@ -293,11 +314,10 @@ class GltfConverter {
     for (const std::string& name : model_.extensionsRequired) {
       if (!contains(kAcceptedRequiredExtensions, name))
         fail("requires unsupported extension " + name);
-      if (name == "KHR_texture_transform") texture_transform_required_ = true;
     }
     for (const std::string& name : model_.extensionsUsed) {
       if (name == "KHR_mesh_quantization") quantization_ = true;
-      if (!contains(kImplementedExtensions, name) && name != "KHR_texture_transform")
+      if (!contains(kImplementedExtensions, name))
         warnings_.add("extension " + name + " is not supported: ignored");
     }
     if (contains(model_.extensionsRequired, std::string_view("KHR_mesh_quantization"))) quantization_ = true;
@@ -685,7 +705,7 @@ class GltfConverter {
     size_t count = 0;
   };
 
-  Attributes read_attributes(const tinygltf::Primitive& prim, const std::string& what) {
+  Attributes read_attributes(const tinygltf::Primitive& prim, const std::string& what, int uv_set) {
     using namespace std::string_literals;
     constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE,
                   UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, S = TINYGLTF_COMPONENT_TYPE_SHORT,
@@ -707,11 +727,14 @@ class GltfConverter {
       at.normals = &float_attribute(it->second, 3, "NORMAL", what);
       same_count(*at.normals, 3, "NORMAL");
     }
-    if (auto it = prim.attributes.find("TEXCOORD_0"); it != prim.attributes.end()) {
-      if (quantization_) require_types(it->second, {F, B, UB, S, US}, false, what + " TEXCOORD_0");
-      else require_types(it->second, {F, UB, US}, true, what + " TEXCOORD_0");
-      at.uvs = &float_attribute(it->second, 2, "TEXCOORD_0", what);
-      same_count(*at.uvs, 2, "TEXCOORD_0");
+    const std::string texcoord = "TEXCOORD_" + std::to_string(uv_set);
+    if (auto it = prim.attributes.find(texcoord); it != prim.attributes.end()) {
+      if (quantization_) require_types(it->second, {F, B, UB, S, US}, false, what + " " + texcoord);
+      else require_types(it->second, {F, UB, US}, true, what + " " + texcoord);
+      at.uvs = &float_attribute(it->second, 2, texcoord.c_str(), what);
+      same_count(*at.uvs, 2, texcoord.c_str());
+    } else if (uv_set > 0) {
+      fail(what + " has no " + texcoord + ", which its material's textures use");
     }
     return at;
   }
@@ -795,7 +818,13 @@ class GltfConverter {
     if (gltf_material >= int(model_.materials.size())) fail(what + " refers to missing material " + std::to_string(gltf_material));
     uint32_t material = gltf_material < 0 ? uint32_t(model_.materials.size()) : uint32_t(gltf_material);
 
-    Attributes at = read_attributes(prim, what);
+    const UvMapping& uv = material_uv_mapping(gltf_material);
+    Attributes at = read_attributes(prim, what, uv.set);
+    std::vector<float> mapped_uvs;
+    if (at.uvs && !uv.affine_identity()) {
+      mapped_uvs = uv.apply(*at.uvs);
+      at.uvs = &mapped_uvs;
+    }
     std::vector<uvec3> tris = assemble(mode, read_indices(prim, at.count, what), what);
     if (at.normals) append_smooth(at, tris, world, material, what);
     else append_flat(at, tris, world, material, what);
@@ -1048,25 +1077,61 @@ class GltfConverter {
     out.emissive_texture = texture_slot(g.emissiveTexture, true, what + " emissiveTexture");
   }
 
-  bool identity_transform(const tinygltf::Value& t) const {
-    auto vec_is = [&](const char* key, double value) {
-      const tinygltf::Value* v = member(t, key);
-      if (!v) return true;
-      for (size_t i = 0; i < v->ArrayLen(); ++i)
-        if (number_or(&v->Get(int(i)), value) != value) return false;
-      return true;
-    };
-    return vec_is("offset", 0.0) && vec_is("scale", 1.0) && number_or(member(t, "rotation"), 0.0) == 0.0;
+  // The UV set and KHR_texture_transform of one texture reference, checked.
+  UvMapping texture_uv_mapping(const tinygltf::TextureInfo& info, const std::string& what) const {
+    UvMapping m;
+    m.set = info.texCoord;
+    const tinygltf::Value* t = extension(info.extensions, "KHR_texture_transform");
+    if (t) {
+      auto pair = [&](const char* key, double fallback) {
+        const tinygltf::Value* v = member(*t, key);
+        if (v && (!v->IsArray() || v->ArrayLen() != 2)) fail(what + " has a KHR_texture_transform " + key + " that is not 2 numbers");
+        return glm::dvec2(number_or(v ? &v->Get(0) : nullptr, fallback), number_or(v ? &v->Get(1) : nullptr, fallback));
+      };
+      const glm::dvec2 offset = pair("offset", 0.0), scale = pair("scale", 1.0);
+      const double rotation = number_or(member(*t, "rotation"), 0.0);
+      if (!std::isfinite(offset.x + offset.y + scale.x + scale.y + rotation))
+        fail(what + " has a non-finite KHR_texture_transform");
+      if (const tinygltf::Value* set = member(*t, "texCoord")) m.set = int(number_or(set, -1.0));
+      // KHR_texture_transform: scale, then rotate (u' = u cos + v sin, v' = v cos - u sin), then offset.
+      const double c = std::cos(rotation), s = std::sin(rotation);
+      m.u = {scale.x * c, scale.y * s, offset.x};
+      m.v = {-scale.x * s, scale.y * c, offset.y};
+    }
+    if (m.set < 0 || m.set > kMaxUvSet) fail(what + " uses texCoord " + std::to_string(m.set) + " (at most " + std::to_string(kMaxUvSet) + ")");
+    return m;
+  }
+
+  // One UV mapping per material, applied to its vertices when they are loaded (exact: the
+  // transform is affine, so it commutes with the interpolation over a triangle): that of its
+  // baseColorTexture, else of its first other texture. Textures of one material that disagree
+  // keep the first's, with a warning.
+  const UvMapping& material_uv_mapping(int gltf_material) {
+    auto [it, fresh] = uv_mappings_.try_emplace(gltf_material);
+    if (!fresh || gltf_material < 0 || size_t(gltf_material) >= model_.materials.size()) return it->second;
+    const tinygltf::Material& g = model_.materials[gltf_material];
+    const std::string what = quoted_name("material", gltf_material, g.name);
+    const std::pair<const tinygltf::TextureInfo*, const char*> slots[] = {
+        {&g.pbrMetallicRoughness.baseColorTexture, " baseColorTexture"},
+        {&g.pbrMetallicRoughness.metallicRoughnessTexture, " metallicRoughnessTexture"},
+        {&g.emissiveTexture, " emissiveTexture"}};
+    bool first = true;
+    for (const auto& [info, slot] : slots) {
+      if (info->index < 0) continue;
+      UvMapping m = texture_uv_mapping(*info, what + slot);
+      if (first) it->second = m;
+      else if (!(m == it->second))
+        warnings_.add("textures of one material with different UV sets or transforms: the first's used for all");
+      first = false;
+    }
+    if (!it->second.affine_identity()) uses_.insert("KHR_texture_transform");
+    if (it->second.set > 0) uses_.insert("TEXCOORD_" + std::to_string(it->second.set));
+    return it->second;
   }
 
   int texture_slot(const tinygltf::TextureInfo& info, bool srgb, const std::string& what) {
     if (info.index < 0) return -1;
     if (size_t(info.index) >= model_.textures.size()) fail(what + " refers to missing texture " + std::to_string(info.index));
-    if (info.texCoord != 0) warnings_.add("texCoord sets other than 0 are not supported: TEXCOORD_0 used");
-    if (const tinygltf::Value* tt = extension(info.extensions, "KHR_texture_transform"); tt && !identity_transform(*tt)) {
-      if (texture_transform_required_) fail(what + " uses KHR_texture_transform, which is required but not implemented");
-      warnings_.add("KHR_texture_transform ignored");
-    }
     const tinygltf::Texture& tex = model_.textures[info.index];
     if (tex.source < 0) {
       warnings_.add("textures without a core image source (e.g. KTX2/WebP extensions) ignored");
@@ -1179,11 +1244,12 @@ class GltfConverter {
   AnimationRig rig_;
   AnimatedMesh* recording_ = nullptr;  // the moving mesh whose object-space vertices are kept
   bool quantization_ = false;
-  bool texture_transform_required_ = false;
   size_t degenerate_triangles_ = 0;
   std::unordered_map<int, std::vector<float>> float_cache_;
   static constexpr size_t kMaxImplicitElements = size_t(1) << 24;
   std::map<TextureKey, int> texture_slots_;
+  std::map<int, UvMapping> uv_mappings_;  // by glTF material
+  std::set<std::string> uses_;            // Scene::gltf_features
   std::vector<TextureKey> texture_keys_;
 };
 

@@ -17,8 +17,9 @@
 // - Things we can render correctly without, or that we deliberately simplify, are warnings in
 //   Scene::warnings (each distinct message once, with a count): skipped POINTS/LINES
 //   primitives, dropped zero-area triangles, generated flat normals, ignored alpha, normal and
-//   occlusion textures, texCoord sets other than 0, KHR_texture_transform (when merely used),
-//   light `range`, orthographic cameras, a generated "auto" camera, skins (the rest pose is
+//   occlusion textures, textures of one material with different UV sets or KHR_texture_transforms
+//   (the baseColorTexture's applies to all: the transform is applied to the vertices' UVs, one per
+//   material), light `range`, orthographic cameras, a generated "auto" camera, skins (the rest pose is
 //   rendered), morph targets and channels animating their weights (the base shape is rendered).
 // - A scene with no light at all (no punctual light, no emissive triangle) is NOT an error: it
 //   loads with the warning "scene has no lights: the image will be black", because such a file

@@ -65,6 +65,9 @@ struct Scene {
 
   Bounds3 bounds;  // of all vertices
   std::vector<std::string> warnings;  // non-fatal loader findings, reported in the JSON record
+  // glTF features beyond the core that the file uses and sst models ("KHR_texture_transform",
+  // "TEXCOORD_1", "KHR_mesh_quantization"), sorted: results say what the scene required.
+  std::vector<std::string> gltf_features;
 
   // Poses this scene at a time (core/scene/animation.h); null when nothing in it moves.
   std::shared_ptr<const SceneAnimation> animation;

@@ -98,6 +98,7 @@ nlohmann::json scene_summary(const Scene& scene, bool diffuse_only) {
                             {"cameras", cameras},
                             {"diffuse_only", diffuse_only},
                             {"requires", to_json(requirements(scene, diffuse_only))},
+                            {"gltf_features", scene.gltf_features},
                             {"warnings", scene.warnings}};
   if (scene.animation) summary["animation"] = scene.animation->summary();  // static scenes' records stay as they were
   return summary;

@@ -430,12 +430,10 @@ TEST(GltfLoader, ExpandsGreyAlphaTexturesToRgba) {
   fs::path dir = test::temp_dir();
   write_png(dir / "grey.png", 2, 1, 8, 4, {255, 51, 0, 255});
   GltfBuilder b = textured_triangle("grey.png");
-  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
   Scene s = load_gltf(b.write(dir, "scene").string());
   ASSERT_EQ(s.textures.size(), 1u);
   EXPECT_EQ(s.textures[0].texel(0), vec4(1.0f, 1.0f, 1.0f, 0.2f));  // alpha stays linear
   EXPECT_EQ(s.textures[0].texel(1), vec4(0.0f, 0.0f, 0.0f, 1.0f));
-  EXPECT_TRUE(has_warning(s, "texCoord"));
 }
 
 TEST(GltfLoader, DecodesSixteenBitTextures) {
@@ -455,21 +453,65 @@ TEST(GltfLoader, ImagesOtherThanPngOrJpegAreAnError) {
   expect_one_line_naming(load_error(p), p, "'tex.ppm' is neither PNG nor JPEG");
 }
 
-TEST(GltfLoader, TextureTransformIsIgnoredWhenUsedAndRefusedWhenRequired) {
+// A triangle with two UV sets: TEXCOORD_0 = (0,0), (1,0), (0,1) and TEXCOORD_1 = (0.5,0.5), (1,0.5),
+// (0.5,1), and a baseColorTexture.
+GltfBuilder triangle_with_two_uv_sets() {
+  GltfBuilder b = textured_triangle("tex.png");
+  json& prim = b.doc["meshes"][0]["primitives"][0];
+  prim["attributes"]["TEXCOORD_0"] = b.accessor(b.view(std::vector<float>{0, 0, 1, 0, 0, 1}), kFloat, 3, "VEC2");
+  prim["attributes"]["TEXCOORD_1"] = b.accessor(b.view(std::vector<float>{0.5f, 0.5f, 1, 0.5f, 0.5f, 1}), kFloat, 3, "VEC2");
+  return b;
+}
+
+TEST(GltfLoader, TextureTransformMapsTheUvsAsTheExtensionDefines) {
   fs::path dir = test::temp_dir();
   write_png(dir / "tex.png", 1, 1, 8, 2, {1, 2, 3});
-  GltfBuilder b = textured_triangle("tex.png");
+  GltfBuilder b = triangle_with_two_uv_sets();
+  b.doc["extensionsRequired"] = {"KHR_texture_transform"};
   b.doc["extensionsUsed"] = {"KHR_texture_transform"};
   auto& info = b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"];
-  info["extensions"]["KHR_texture_transform"] = {{"scale", {1.0, 1.0}}};
-  Scene identity = load_gltf(b.write(dir, "identity").string());
-  EXPECT_FALSE(has_warning(identity, "KHR_texture_transform"));
-  info["extensions"]["KHR_texture_transform"] = {{"scale", {2.0, 2.0}}};
-  Scene scaled = load_gltf(b.write(dir, "scaled").string());
-  EXPECT_TRUE(has_warning(scaled, "KHR_texture_transform ignored"));
-  b.doc["extensionsRequired"] = {"KHR_texture_transform"};
-  fs::path p = b.write(dir, "required");
-  expect_one_line_naming(load_error(p), p, "KHR_texture_transform, which is required but not implemented");
+  // Scale, then rotate by 90 degrees (u' = v, v' = -u), then offset.
+  info["extensions"]["KHR_texture_transform"] = {{"offset", {0.25, 0.5}}, {"rotation", M_PI / 2}, {"scale", {2.0, 3.0}}};
+  Scene s = load_gltf(b.write(dir, "transformed").string());
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_FALSE(has_warning(s, "KHR_texture_transform"));
+  EXPECT_FALSE(has_warning(s, "UV"));
+  // (1,0) -> scaled (2,0) -> rotated (0,-2) -> (0.25,-1.5); (0,1) -> (0,3) -> (3,0) -> (3.25,0.5).
+  EXPECT_NEAR(s.uvs[s.triangles[0].x].x, 0.25f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].x].y, 0.5f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].y].x, 0.25f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].y].y, -1.5f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].z].x, 3.25f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].z].y, 0.5f, 1e-6f);
+  EXPECT_EQ(s.gltf_features, std::vector<std::string>{"KHR_texture_transform"});
+  // The extension's texCoord overrides the texture's.
+  info["extensions"]["KHR_texture_transform"] = {{"texCoord", 1}};
+  Scene second = load_gltf(b.write(dir, "second").string());
+  EXPECT_NEAR(second.uvs[second.triangles[0].y].x, 1.0f, 1e-6f);
+  EXPECT_NEAR(second.uvs[second.triangles[0].y].y, 0.5f, 1e-6f);
+  EXPECT_EQ(second.gltf_features, std::vector<std::string>{"TEXCOORD_1"});
+  info["extensions"]["KHR_texture_transform"] = {{"scale", {1.0}}};
+  fs::path bad = b.write(dir, "bad");
+  expect_one_line_naming(load_error(bad), bad, "material 0 baseColorTexture has a KHR_texture_transform scale that is not 2 numbers");
+}
+
+TEST(GltfLoader, TexCoordSelectsTheUvSetAndAMissingSetIsAnError) {
+  fs::path dir = test::temp_dir();
+  write_png(dir / "tex.png", 1, 1, 8, 2, {1, 2, 3});
+  GltfBuilder b = triangle_with_two_uv_sets();
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+  Scene s = load_gltf(b.write(dir, "set1").string());
+  EXPECT_NEAR(s.uvs[s.triangles[0].z].x, 0.5f, 1e-6f);
+  EXPECT_NEAR(s.uvs[s.triangles[0].z].y, 1.0f, 1e-6f);
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 2;
+  fs::path p = b.write(dir, "set2");
+  expect_one_line_naming(load_error(p), p, "has no TEXCOORD_2, which its material's textures use");
+  // Textures of one material that disagree keep the baseColorTexture's, with a warning.
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["texCoord"] = 1;
+  b.doc["materials"][0]["emissiveTexture"] = {{"index", 0}, {"texCoord", 0}};
+  Scene mixed = load_gltf(b.write(dir, "mixed").string());
+  EXPECT_NEAR(mixed.uvs[mixed.triangles[0].z].x, 0.5f, 1e-6f);
+  EXPECT_TRUE(has_warning(mixed, "different UV sets or transforms"));
 }
 
 TEST(GltfLoader, AlphaNormalAndOcclusionAreIgnoredWithWarnings) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/eval/distribution_check.h"
 #include "core/eval/experiment_config.h"
 #include "core/eval/merge.h"
 #include "core/eval/metrics_check.h"
@@ -102,13 +103,31 @@ int run_report_command(const ReportArgs& a) {
 }
 
 CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
-  CLI::App* cmd = app.add_subcommand("check", "re-render a config and fail if an error metric is worse than its baseline");
+  CLI::App* cmd = app.add_subcommand("check", "re-render a config and fail if its results moved from the baseline's beyond their noise");
   cmd->add_option("config", a.config, "experiment config (configs/ci.json)")->required();
   cmd->add_option("--baseline", a.baseline, "baseline results folder (results/ci)")->required();
-  cmd->add_option("-o,--output", a.output, "where the fresh results go; its runs/ are replaced [<tmp>/sst-check-<name>]");
-  cmd->add_flag("--update", a.update, "render and write the results as the new baseline instead of checking");
-  cmd->add_option("--sigmas", a.sigmas, "tolerance in standard errors of the baseline's noise")->capture_default_str();
-  cmd->add_option("--min-relative", a.min_relative, "tolerance floor, fraction of the baseline value")->capture_default_str();
+  cmd->add_option("-o,--output", a.output, "where the fresh results and check.json go; its runs/ are replaced [<tmp>/sst-check-<name>]");
+  cmd->add_flag("--update", a.update, "render and write the results and their statistics as the new baseline instead of checking");
+  cmd->add_option("--sigmas", a.sigmas, "median table: tolerance in standard errors of the baseline's noise")->capture_default_str();
+  cmd->add_option("--min-relative", a.min_relative, "median table: tolerance floor, fraction of the baseline value")->capture_default_str();
+  cmd->add_option("--alpha", a.distribution.alpha, "distribution tests: probability that clean code fails (all groups together)")
+      ->capture_default_str()->check(CLI::Range(1e-12, 0.5));
+  cmd->add_option("--block", a.distribution.block, "distribution tests: block side in pixels (--update only)")
+      ->capture_default_str()->check(CLI::Range(1, 4096));
+  cmd->add_option("--seeds", a.seeds, "seeds per group instead of the config's (a power study's fresh sets)")
+      ->check(CLI::Range(1, 10000));
+  cmd->add_option("--seed", a.seed, "first seed instead of the config's")->check(CLI::Range(int64_t(0), int64_t(4294967295)));
+  cmd->add_option("--statistics-seeds", a.statistics_seeds, "--update: seeds per group of the distribution statistics")
+      ->capture_default_str()->check(CLI::Range(2, 10000));
+  cmd->add_option("--statistics-seed", a.statistics_seed, "--update: their first seed (keep them disjoint from the check's)")
+      ->capture_default_str()->check(CLI::Range(int64_t(0), int64_t(4294967295)));
+  cmd->add_flag("--resume", a.resume, "keep finished runs in the output folder instead of rendering them again");
+  cmd->add_option("--inject-bias", a.distribution.inject_bias, "fault for measuring power: fresh colour += this x its indirect layer")
+      ->check(CLI::Range(-1.0, 10.0));
+  cmd->add_option("--inject-variance", a.distribution.inject_variance,
+                  "fault for measuring power: noise of this x the baseline's per-pixel variance added to fresh colour")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--inject-method", a.distribution.inject_method, "inject faults only into groups of this method [all]");
   add_scene_options(cmd, a.scene_dirs, a.cache_dir);
   cmd->add_flag("-q,--quiet", a.quiet, "no progress on stderr");
   return cmd;
@@ -116,26 +135,69 @@ CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
 
 int run_check_command(const CheckArgs& a) {
   ExperimentConfig config = load_experiment_config(a.config);
+  if (a.seeds > 0) config.seeds = a.seeds;
+  if (a.seed >= 0) config.base["seed"] = a.seed;
   SweepOptions o;
   o.output_dir = a.update ? a.baseline
                           : (a.output.empty() ? (fs::temp_directory_path() / ("sst-check-" + config.name)).string() : a.output);
-  fs::remove_all(fs::path(o.output_dir) / "runs");  // a check always renders afresh
+  if (!a.resume) fs::remove_all(fs::path(o.output_dir) / "runs");  // a check renders afresh
+  o.resume = a.resume;
   o.scene_dirs = a.scene_dirs;
   o.cache_dir = a.cache_dir;
   o.quiet = a.quiet;
-  nlohmann::json baseline;
-  if (!a.update) baseline = read_json_file((fs::path(a.baseline) / "results.json").string());  // before rendering
+  const fs::path statistics_path = fs::path(a.baseline) / "check_statistics.json";
+  nlohmann::json baseline, statistics;
+  if (!a.update) {  // read before rendering: a missing baseline is an error at once
+    baseline = read_json_file((fs::path(a.baseline) / "results.json").string());
+    if (fs::exists(statistics_path)) statistics = read_json_file(statistics_path.string());
+  }
   nlohmann::json fresh = run_sweep(config, o);
   if (a.update) {
-    std::printf("baseline updated: %s (%zu runs); review with git diff %s\n", a.baseline.c_str(), fresh["runs"].size(),
+    // The medians table compares a check with the baseline's runs of the same seeds (results.json);
+    // the distribution tests need many other seeds, rendered apart and reduced to statistics.
+    ExperimentConfig many = config;
+    many.seeds = a.statistics_seeds;
+    many.base["seed"] = a.statistics_seed;
+    SweepOptions so = o;
+    so.output_dir = (fs::path(a.baseline) / "statistics-runs").string();
+    if (!a.resume) fs::remove_all(fs::path(so.output_dir) / "runs");
+    nlohmann::json runs = run_sweep(many, so);
+    write_json_atomic(statistics_path.string(), make_distribution_baseline(runs, so.output_dir, a.baseline, a.distribution));
+    fs::remove_all(so.output_dir);
+    std::printf("baseline updated: %s (%zu runs; statistics of %zu runs in %s); review with git diff %s\n",
+                a.baseline.c_str(), fresh["runs"].size(), runs["runs"].size(), statistics_path.string().c_str(),
                 a.baseline.c_str());
     return 0;
   }
-  CheckOutcome outcome = check_against_baseline(fresh, baseline, {a.sigmas, a.min_relative});
-  std::fputs(outcome.table.c_str(), stdout);
-  std::printf("metrics check %s: %d failure(s); fresh results in %s\n", outcome.passed ? "passed" : "FAILED",
-              outcome.failures, o.output_dir.c_str());
-  return outcome.passed ? 0 : 1;
+  CheckOutcome medians = check_against_baseline(fresh, baseline, {a.sigmas, a.min_relative});
+  std::printf("## Medians over seeds against the baseline's\n\n");
+  std::fputs(medians.table.c_str(), stdout);
+  bool passed = medians.passed;
+  int failures = medians.failures;
+  nlohmann::json record = {{"medians", {{"passed", medians.passed}, {"failures", medians.failures}}}};
+  if (statistics.is_null()) {
+    std::printf("\nNo %s: the distribution tests need a baseline made with --update.\n", statistics_path.string().c_str());
+  } else {
+    DistributionOutcome tests = check_distribution(fresh, o.output_dir, statistics, a.baseline, a.distribution);
+    std::printf("\n## Seeds as samples: t-tests against the baseline's distribution\n\n");
+    std::fputs(tests.table.c_str(), stdout);
+    passed = passed && tests.passed;
+    failures += tests.failures;
+    record["distribution"] = {{"passed", tests.passed},
+                              {"failures", tests.failures},
+                              {"alpha", a.distribution.alpha},
+                              {"whole_image_threshold", tests.whole_image_threshold},
+                              {"block_threshold", tests.block_threshold},
+                              {"inject_bias", a.distribution.inject_bias},
+                              {"inject_variance", a.distribution.inject_variance},
+                              {"inject_method", a.distribution.inject_method},
+                              {"groups", tests.groups}};
+  }
+  record["passed"] = passed;
+  write_json_atomic((fs::path(o.output_dir) / "check.json").string(), record);
+  std::printf("metrics check %s: %d failure(s); fresh results in %s\n", passed ? "passed" : "FAILED", failures,
+              o.output_dir.c_str());
+  return passed ? 0 : 1;
 }
 
 }  // namespace sst::app

@@ -1,8 +1,11 @@
 // The experiment subcommands of sst-eval: sweep, merge, table and check. Each registers itself
 // on the app and runs from its own args struct.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
+
+#include "core/eval/distribution_check.h"
 
 namespace CLI {
 class App;
@@ -52,6 +55,12 @@ struct CheckArgs {
   std::string cache_dir;
   double sigmas = 4.0;
   double min_relative = 0.05;
+  int seeds = 0;          // > 0: overrides the config's seeds
+  int64_t seed = -1;      // >= 0: overrides the config's first seed
+  int statistics_seeds = 24;       // --update: seeds of the distribution statistics
+  int64_t statistics_seed = 1000;  // --update: their first seed (disjoint from the check's)
+  bool resume = false;    // keep finished runs in the output folder
+  DistributionParams distribution;
   bool quiet = false;
 };
 CLI::App* add_check_command(CLI::App& app, CheckArgs& args);

@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 for dir in "$@"; do
   [ -f "$dir/results.json" ] || { echo "error: $dir: no results.json" >&2; exit 1; }
-  find "$dir" -name '*.exr' -delete
+  find "$dir" -name '*.exr' -not -path "$dir/statistics/*" -delete  # statistics/: the check's baseline
   find "$dir/runs" -name error.png -delete
   keep=$(/usr/bin/env python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); print("\n".join(g["runs"][0] for g in r["groups"]))' "$dir/results.json" 2>/dev/null || true)
   if [ -n "$keep" ]; then

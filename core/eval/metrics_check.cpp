@@ -21,10 +21,11 @@ struct Comparison {
 };
 
 // `badness`: how bad a value is (rmse itself, 1 - ssim), so "worse" is always "larger".
-Comparison compare(double base, double fresh, double std_over_seeds, int seeds, const CheckParams& p) {
-  // The median of n normal values has a standard error of about 1.2533 sigma / sqrt(n).
+Comparison compare(double base, double fresh, double std_over_seeds, int seeds, int fresh_seeds, const CheckParams& p) {
+  // The median of n normal values has a standard error of about 1.2533 sigma / sqrt(n); the
+  // baseline usually has more seeds than a check renders.
   double noise = std::isfinite(std_over_seeds) && seeds > 1
-                     ? p.sigmas * 1.2533 * std_over_seeds * std::sqrt(2.0 / seeds)
+                     ? p.sigmas * 1.2533 * std_over_seeds * std::sqrt(1.0 / seeds + 1.0 / std::max(fresh_seeds, 1))
                      : 0.0;
   double tolerance = std::max(noise, p.min_relative * std::abs(base));
   if (!std::isfinite(fresh) && std::isfinite(base)) return {"WORSE", tolerance};
@@ -62,12 +63,13 @@ CheckOutcome check_against_baseline(const nlohmann::json& fresh, const nlohmann:
     }
     const nlohmann::json& f = *it->second;
     int seeds = b.value("seeds", 1);
+    int fresh_seeds = f.value("seeds", seeds);
     std::string times = fmt(number(b, "time_ms_median")) + " -> " + fmt(number(f, "time_ms_median"));
     double rmse_b = number(b, "rmse_median"), rmse_f = number(f, "rmse_median");
     // SSIM: compare 1 - ssim, the dissimilarity, so that the relative floor scales with the error.
     double dssim_b = 1.0 - number(b, "ssim_median"), dssim_f = 1.0 - number(f, "ssim_median");
-    Comparison rmse = compare(rmse_b, rmse_f, number(b, "rmse_robust_std"), seeds, p);
-    Comparison ssim = compare(dssim_b, dssim_f, number(b, "ssim_robust_std"), seeds, p);
+    Comparison rmse = compare(rmse_b, rmse_f, number(b, "rmse_robust_std"), seeds, fresh_seeds, p);
+    Comparison ssim = compare(dssim_b, dssim_f, number(b, "ssim_robust_std"), seeds, fresh_seeds, p);
     t << "| " << name << " | rmse | " << fmt(rmse_b) << " | " << fmt(rmse_f) << " | " << change(rmse_b, rmse_f) << " | "
       << fmt(rmse.tolerance) << " | " << rmse.status << " | " << times << " |\n";
     t << "| " << name << " | 1-ssim | " << fmt(dssim_b) << " | " << fmt(dssim_f) << " | " << change(dssim_b, dssim_f)

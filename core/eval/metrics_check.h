@@ -5,7 +5,7 @@
 // | option        | default | meaning                                                               |
 // |---------------|---------|-----------------------------------------------------------------------|
 // | sigmas        | 4       | allowed change in standard errors of the difference of two medians:   |
-// |               |         | sigmas * 1.2533 * robust_std * sqrt(2 / seeds)                        |
+// |               |         | sigmas * 1.2533 * robust_std * sqrt(1/seeds + 1/fresh seeds)          |
 // | min_relative  | 0.05    | and never less than this fraction of the baseline value, so that a    |
 // |               |         | noise estimate from few seeds cannot make the check flaky              |
 //

@@ -88,6 +88,7 @@ struct Pixels {
   std::vector<float> floats;
   std::vector<uint8_t> bytes;
   const void* data() const { return bytes.empty() ? static_cast<const void*>(floats.data()) : bytes.data(); }
+  OIIO::TypeDesc data_format() const { return bytes.empty() ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8; }
 };
 
 // Channel names: R, G, B, then per layer <layer>.Y, <layer>.X/Y (a 2D vector, as motion vectors
@@ -155,7 +156,7 @@ void write_with_oiio(const fs::path& temp, const std::string& path, const Pixels
   auto out = OIIO::ImageOutput::create(temp.string());
   if (!out) fail(OIIO::geterror());
   if (!out->open(temp.string(), px.spec)) fail(out->geterror());
-  if (!out->write_image(px.spec.format, px.data())) fail(out->geterror());
+  if (!out->write_image(px.data_format(), px.data())) fail(out->geterror());
   if (!out->close()) fail(out->geterror());
   out.reset();
   std::error_code ec;
@@ -434,7 +435,7 @@ Image from_display(const Image& display) {
 }
 
 void write_image(const std::string& path, const Image& rgb, const std::vector<Layer>& layers,
-                 float exposure) {
+                 float exposure, ExrValues exr_values) {
   const FileFormat format = format_for(path);
   check_writable(path, rgb, layers);
   // The temporary below is renamed over the target, which must therefore not be a device or FIFO.
@@ -451,6 +452,11 @@ void write_image(const std::string& path, const Image& rgb, const std::vector<La
     case FileFormat::exr: {
       Pixels px = pack_float(rgb, layers);
       px.spec.attribute("compression", "zip");
+      if (exr_values == ExrValues::float16) {
+        // Beyond the largest half a value would become infinite.
+        for (float& v : px.floats) v = std::clamp(v, -65504.0f, 65504.0f);
+        px.spec.set_format(OIIO::TypeDesc::HALF);
+      }
       write_with_oiio(temp, path, px);
       break;
     }

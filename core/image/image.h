@@ -45,8 +45,11 @@ float srgb_decode(float encoded);
 // and renames it, so a reader never sees half a file; creates missing parent folders.
 // Non-finite values are written as 0. Throws sst::Error naming the path on failure or on an
 // unknown extension.
+// An EXR's values: 32-bit floats, or halves (a third of the file for noisy images; values beyond
+// +-65504 are clamped to it).
+enum class ExrValues { float32, float16 };
 void write_image(const std::string& path, const Image& rgb, const std::vector<Layer>& layers = {},
-                 float exposure = 0.0f);
+                 float exposure = 0.0f, ExrValues exr_values = ExrValues::float32);
 
 // Reads RGB (alpha and extra layers dropped) as linear floats. A PNG/JPEG is display-encoded
 // as stored and is decoded to linear; `was_display` tells the caller which it was.

@@ -29,6 +29,15 @@ TEST(MetricsCheck, ToleranceComesFromTheBaselineNoise) {
   EXPECT_NE(better.table.find("better"), std::string::npos);
 }
 
+TEST(MetricsCheck, ToleranceCountsTheSeedsOfBothSides) {
+  // A baseline of 24 seeds, a check of 5: 4 * 1.2533 * 0.01 * sqrt(1/24 + 1/5) = 0.024645.
+  json base = results(0.100, 0.010, 0.80, 24);
+  EXPECT_TRUE(check_against_baseline(results(0.12464, 0.01, 0.80, 5), base).passed);
+  CheckOutcome worse = check_against_baseline(results(0.12465, 0.01, 0.80, 5), base);
+  EXPECT_FALSE(worse.passed);
+  EXPECT_NE(worse.table.find("| 0.024645 | WORSE |"), std::string::npos) << worse.table;
+}
+
 TEST(MetricsCheck, RelativeFloorWithoutNoiseEstimate) {
   json base = results(0.100, 0.0, 0.80, 1);
   EXPECT_TRUE(check_against_baseline(results(0.1049, 0.0, 0.80, 1), base).passed);

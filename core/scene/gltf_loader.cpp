@@ -1092,13 +1092,16 @@ class GltfConverter {
       const double rotation = number_or(member(*t, "rotation"), 0.0);
       if (!std::isfinite(offset.x + offset.y + scale.x + scale.y + rotation))
         fail(what + " has a non-finite KHR_texture_transform");
-      if (const tinygltf::Value* set = member(*t, "texCoord")) m.set = int(number_or(set, -1.0));
+      if (const tinygltf::Value* set = member(*t, "texCoord")) {
+        const double d = number_or(set, -1.0);  // checked before the conversion, which could overflow
+        m.set = d >= 0.0 && d <= kMaxUvSet && d == std::floor(d) ? int(d) : -1;
+      }
       // KHR_texture_transform: scale, then rotate (u' = u cos + v sin, v' = v cos - u sin), then offset.
       const double c = std::cos(rotation), s = std::sin(rotation);
       m.u = {scale.x * c, scale.y * s, offset.x};
       m.v = {-scale.x * s, scale.y * c, offset.y};
     }
-    if (m.set < 0 || m.set > kMaxUvSet) fail(what + " uses texCoord " + std::to_string(m.set) + " (at most " + std::to_string(kMaxUvSet) + ")");
+    if (m.set < 0 || m.set > kMaxUvSet) fail(what + " has a texCoord that is not a whole number in 0.." + std::to_string(kMaxUvSet));
     return m;
   }
 

@@ -490,6 +490,9 @@ TEST(GltfLoader, TextureTransformMapsTheUvsAsTheExtensionDefines) {
   EXPECT_NEAR(second.uvs[second.triangles[0].y].x, 1.0f, 1e-6f);
   EXPECT_NEAR(second.uvs[second.triangles[0].y].y, 0.5f, 1e-6f);
   EXPECT_EQ(second.gltf_features, std::vector<std::string>{"TEXCOORD_1"});
+  info["extensions"]["KHR_texture_transform"] = {{"texCoord", 1e300}};
+  fs::path huge = b.write(dir, "huge");
+  expect_one_line_naming(load_error(huge), huge, "material 0 baseColorTexture has a texCoord that is not a whole number in 0..7");
   info["extensions"]["KHR_texture_transform"] = {{"scale", {1.0}}};
   fs::path bad = b.write(dir, "bad");
   expect_one_line_naming(load_error(bad), bad, "material 0 baseColorTexture has a KHR_texture_transform scale that is not 2 numbers");

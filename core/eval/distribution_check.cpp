@@ -16,6 +16,7 @@
 #include "core/eval/json_fields.h"
 #include "core/image/image.h"
 #include "core/math/student_t.h"
+#include "core/util/hash.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -187,12 +188,6 @@ void inject(Image& color, const std::string& path, const Image& base_variance, c
   }
 }
 
-uint64_t hash_text(const std::string& s) {
-  uint64_t h = 1469598103934665603ull;  // FNV-1a
-  for (unsigned char ch : s) h = (h ^ ch) * 1099511628211ull;
-  return h;
-}
-
 // A whole number of the statistics JSON, checked before it is converted.
 int whole_number(const nlohmann::json& j, const char* key, int lo, int hi) {
   const double v = number(j, key);
@@ -335,7 +330,7 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
         row.problem = "non-finite values in " + g.images[s];
         break;
       }
-      if (injected) inject(im, g.images[s], base_variance, p, hash_text(row.group) + s);
+      if (injected) inject(im, g.images[s], base_variance, p, Hash64().add(row.group).value() + s);
       reductions.push_back(reduce(im, block));
       energies.push_back(log_energy(im, base_mean, 1.0));
     }

@@ -38,6 +38,10 @@ PackedScene pack_scene(const Scene& scene) {
     throw Error(where + std::to_string(scene.normals.size()) + " normals for " + std::to_string(n) + " vertices");
   if (!scene.uvs.empty() && scene.uvs.size() != n)
     throw Error(where + std::to_string(scene.uvs.size()) + " uvs for " + std::to_string(n) + " vertices");
+  if (!scene.tangents.empty() && scene.tangents.size() != n)
+    throw Error(where + std::to_string(scene.tangents.size()) + " tangents for " + std::to_string(n) + " vertices");
+  if (!scene.colors.empty() && scene.colors.size() != n)
+    throw Error(where + std::to_string(scene.colors.size()) + " colors for " + std::to_string(n) + " vertices");
   if (scene.triangle_material.size() != scene.triangles.size())
     throw Error(where + std::to_string(scene.triangle_material.size()) + " triangle materials for " +
                 std::to_string(scene.triangles.size()) + " triangles");
@@ -52,6 +56,8 @@ PackedScene pack_scene(const Scene& scene) {
     const vec2 uv = scene_uv(scene, uint32_t(i));
     v.u = uv.x;
     v.v = uv.y;
+    v.tangent = scene_tangent(scene, uint32_t(i));
+    v.color = scene_color(scene, uint32_t(i));
   }
 
   out.triangles.resize(scene.triangles.size());

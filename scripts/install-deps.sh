@@ -10,6 +10,7 @@ PACKAGES=(
   libembree-dev libtbb-dev
   libopenimageio-dev openimageio-tools libopenexr-dev
   libtinygltf-dev libstb-dev nlohmann-json3-dev libcli11-dev libglm-dev
+  libdraco-dev             # glTF KHR_draco_mesh_compression (core/scene/draco_mesh.h)
   libgtest-dev libgmock-dev libbenchmark-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-tools
   parallel

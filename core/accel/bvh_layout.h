@@ -23,6 +23,7 @@
 #include <glm/glm.hpp>
 namespace sst::glsl {
 using uint = uint32_t;
+using glm::vec2;
 using glm::vec3;
 #endif
 
@@ -51,13 +52,17 @@ struct BvhNode {
   uint count_and_flags;  // see BVH_LEAF_FLAG
 };
 
+// BvhTriangle.flags: the triangle's material has an alpha test (SceneMaterial::alpha_cutoff > 0),
+// which the traversal calls BVH_ALPHA_TEST for (bvh_traverse.h).
+#define BVH_TRIANGLE_ALPHA_TESTED 1u
+
 struct BvhTriangle {
   vec3 v0;
   uint triangle;  // index of the triangle in the scene (Scene::triangles)
   vec3 v1;
-  uint reserved1;  // 0
+  uint flags;     // BVH_TRIANGLE_*
   vec3 v2;
-  uint reserved2;  // 0
+  uint reserved;  // 0
 };
 
 // A ray as a shader reads it (e.g. gpu/shaders/bvh_trace_test.comp). t is in units of
@@ -95,9 +100,9 @@ static_assert(sizeof(BvhTriangle) == 48);
 static_assert(offsetof(BvhTriangle, v0) == 0);
 static_assert(offsetof(BvhTriangle, triangle) == 12);
 static_assert(offsetof(BvhTriangle, v1) == 16);
-static_assert(offsetof(BvhTriangle, reserved1) == 28);
+static_assert(offsetof(BvhTriangle, flags) == 28);
 static_assert(offsetof(BvhTriangle, v2) == 32);
-static_assert(offsetof(BvhTriangle, reserved2) == 44);
+static_assert(offsetof(BvhTriangle, reserved) == 44);
 static_assert(sizeof(BvhRay) == 32);
 static_assert(offsetof(BvhRay, origin) == 0);
 static_assert(offsetof(BvhRay, tmin) == 12);

@@ -10,6 +10,10 @@
 //                      buffers (C++: `const sst::FlatBvh& bvh,`); empty by default (GLSL
 //                      buffers are globals).
 //   BVH_CONTEXT_ARG    with BVH_CONTEXT_PARAM: the same parameter as an argument (`bvh,`).
+//   BVH_ALPHA_TEST(triangle, b)  optional: whether a hit on scene triangle `triangle` at
+//                      barycentrics b (vec2) counts (core/shading/surface_eval.h's
+//                      triangle_alpha_passes); asked only for triangles flagged
+//                      BVH_TRIANGLE_ALPHA_TESTED. Without it every hit counts.
 // The common subset used here: structs built member by member (no constructors, no aggregate
 // initialisation), functions returning structs, BVH_IN/BVH_INOUT for parameter qualifiers
 // (C++ const& / &, GLSL in / inout), BVH_FUNC before every function (C++ inline), vecN
@@ -53,6 +57,9 @@
 #endif
 #ifndef BVH_CONTEXT_ARG
 #define BVH_CONTEXT_ARG
+#endif
+#ifndef BVH_ALPHA_TEST
+#define BVH_ALPHA_TEST(triangle, b) true
 #endif
 
 #ifdef __cplusplus
@@ -136,8 +143,10 @@ BVH_FUNC bool bvh_hit_box(BVH_IN(BvhRayPre) ray, vec3 lo, vec3 hi, float tmax) {
   return tnear <= min(tfar, tmax);
 }
 
-// Watertight ray-triangle test; on a hit with tmin <= t < hit.t updates hit and returns true.
-BVH_FUNC bool bvh_intersect_triangle(BVH_IN(BvhRayPre) ray, BVH_IN(BvhTriangle) tri, BVH_INOUT(BvhHit) hit) {
+// Watertight ray-triangle test; on a hit with tmin <= t < hit.t that passes the alpha test
+// updates hit and returns true.
+BVH_FUNC bool bvh_intersect_triangle(BVH_CONTEXT_PARAM BVH_IN(BvhRayPre) ray, BVH_IN(BvhTriangle) tri,
+                                     BVH_INOUT(BvhHit) hit) {
   BVH_PRECISE vec3 a = tri.v0 - ray.origin;
   BVH_PRECISE vec3 b = tri.v1 - ray.origin;
   BVH_PRECISE vec3 c = tri.v2 - ray.origin;
@@ -196,6 +205,7 @@ BVH_FUNC bool bvh_intersect_triangle(BVH_IN(BvhRayPre) ray, BVH_IN(BvhTriangle) 
   float plane_t = dot(base - ray.origin, normal) / dot(ray.direction, normal);
   if (abs(plane_t) <= 3.0e38f) t = plane_t;  // finite: not parallel to the plane
   if (!(t >= ray.tmin && t < hit.t)) return false;  // also rejects NaN (zero direction)
+  if ((tri.flags & BVH_TRIANGLE_ALPHA_TESTED) != 0u && !(BVH_ALPHA_TEST(tri.triangle, vec2(u, v)))) return false;
   hit.t = t;
   hit.triangle = tri.triangle;
   hit.u = u;
@@ -236,7 +246,7 @@ BVH_FUNC BvhHit bvh_traverse(BVH_CONTEXT_PARAM vec3 origin, vec3 direction, floa
         uint end = node.first_or_right + (node.count_and_flags & BVH_COUNT_MASK);
         for (uint i = node.first_or_right; i < end; ++i) {
           BVH_COUNT_ITERATION();
-          if (bvh_intersect_triangle(ray, BVH_TRIANGLE(i), hit) && any_hit) return hit;
+          if (bvh_intersect_triangle(BVH_CONTEXT_ARG ray, BVH_TRIANGLE(i), hit) && any_hit) return hit;
         }
       } else {
         if (sp == BVH_STACK_SIZE) {

@@ -4,10 +4,36 @@
 
 #include <string>
 
+#include "core/scene/scene_access.h"
+#include "core/scene/triangle_attributes.h"
 #include "core/util/error.h"
 
 namespace sst {
-EmbreeAccel::EmbreeAccel(const Scene& scene, bool flat) : epsilon_(scene_ray_epsilon(scene)) {
+namespace {
+
+bool has_alpha_test(const Scene& scene) {
+  for (const Material& m : scene.materials)
+    if (material_alpha_cutoff(m) > 0.0f) return true;
+  return false;
+}
+
+// Embree's filter for intersection and occlusion queries alike: a hit that fails the alpha test
+// is rejected, and the traversal goes on.
+void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto& scene = *static_cast<const Scene*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
+    if (!triangle_alpha_tested(scene, triangle)) continue;
+    const vec2 b(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (!triangle_alpha_passes(scene, triangle, b)) args->valid[i] = 0;
+  }
+}
+
+}  // namespace
+
+EmbreeAccel::EmbreeAccel(const Scene& scene, bool flat)
+    : epsilon_(scene_ray_epsilon(scene)), alpha_scene_(has_alpha_test(scene) ? &scene : nullptr) {
   // One structure per accel: the flat BVH answers every query when it is there.
   if (flat)
     flat_ = std::make_unique<FlatBvh>(build_flat_bvh(scene));
@@ -38,6 +64,11 @@ void EmbreeAccel::build_embree(const Scene& scene) {
     indices[3 * i + 0] = scene.triangles[i].x;
     indices[3 * i + 1] = scene.triangles[i].y;
     indices[3 * i + 2] = scene.triangles[i].z;
+  }
+  if (alpha_scene_) {
+    rtcSetGeometryUserData(geometry, const_cast<Scene*>(alpha_scene_));
+    rtcSetGeometryIntersectFilterFunction(geometry, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geometry, alpha_filter);
   }
   rtcCommitGeometry(geometry);
   rtcAttachGeometry(scene_, geometry);
@@ -79,7 +110,7 @@ RTCRay to_rtc(const Ray& ray) {
 }  // namespace
 
 Hit EmbreeAccel::intersect(const Ray& ray) const {
-  if (flat_) return flat_bvh_intersect(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax);
+  if (flat_) return flat_bvh_intersect(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax, alpha_scene_);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -96,7 +127,7 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
 }
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
-  if (flat_) return flat_bvh_occluded(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax);
+  if (flat_) return flat_bvh_occluded(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax, alpha_scene_);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = to_rtc(ray);

@@ -38,6 +38,9 @@ float scene_ray_epsilon(const Scene& scene);
 
 struct FlatBvh;
 
+// Alpha-tested triangles (glTF MASK and BLEND: triangle_alpha_passes, core/scene/triangle_attributes.h)
+// are tested by every query, through Embree's filter functions or the flat BVH's hook, against
+// `scene`, which must outlive the accel.
 class EmbreeAccel {
  public:
   explicit EmbreeAccel(const Scene& scene, bool flat = false);
@@ -68,6 +71,7 @@ class EmbreeAccel {
   RTCDevice device_ = nullptr;
   RTCScene scene_ = nullptr;
   float epsilon_ = 0.0f;
+  const Scene* alpha_scene_ = nullptr;  // set when a material has an alpha test
   std::unique_ptr<FlatBvh> flat_;  // set: queries go to the flat BVH instead of Embree
 };
 

@@ -14,13 +14,26 @@
 #include <new>
 #include <string>
 
+#include "core/scene/scene_access.h"
+#include "core/scene/triangle_attributes.h"
 #include "core/util/error.h"
 
+namespace sst {
+namespace {
+// What the shared traversal reads: the tree, and the scene for the alpha tests.
+struct FlatBvhQuery {
+  const FlatBvh& bvh;
+  const Scene* scene;
+};
+}  // namespace
+}  // namespace sst
+
 // The shared traversal, compiled as C++ over a FlatBvh (in namespace sst::glsl).
-#define BVH_CONTEXT_PARAM const sst::FlatBvh &bvh_buffers,
-#define BVH_CONTEXT_ARG bvh_buffers,
-#define BVH_NODE(i) bvh_buffers.nodes[i]
-#define BVH_TRIANGLE(i) bvh_buffers.triangles[i]
+#define BVH_CONTEXT_PARAM const sst::FlatBvhQuery &bvh_query,
+#define BVH_CONTEXT_ARG bvh_query,
+#define BVH_NODE(i) bvh_query.bvh.nodes[i]
+#define BVH_TRIANGLE(i) bvh_query.bvh.triangles[i]
+#define BVH_ALPHA_TEST(triangle, b) ::sst::triangle_alpha_passes(*bvh_query.scene, triangle, b)
 #include "core/accel/bvh_traverse.h"
 
 namespace sst {
@@ -138,7 +151,9 @@ struct Flattener {
         record.v1 = scene.positions[tri.y];
         record.v2 = scene.positions[tri.z];
         record.triangle = t;
-        record.reserved1 = record.reserved2 = 0;
+        record.flags = triangle_alpha_tested(scene, t) ? BVH_TRIANGLE_ALPHA_TESTED : 0u;
+        record.reserved = 0;
+        if (record.flags != 0u) ++out.stats.alpha_tested_refs;
       }
       ++out.stats.leaf_count;
       out.stats.max_leaf_size = std::max(out.stats.max_leaf_size, leaf->count);
@@ -254,8 +269,16 @@ FlatBvh build_flat_bvh(const Scene& scene, const FlatBvhOptions& options) {
   return out;
 }
 
-FlatHit flat_bvh_intersect(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax) {
-  const glsl::BvhHit h = glsl::bvh_intersect(bvh, origin, dir, tmin, tmax);
+namespace {
+FlatBvhQuery query_of(const FlatBvh& bvh, const Scene* scene) {
+  if (bvh.stats.alpha_tested_refs > 0 && !scene)
+    throw Error("a flat BVH with alpha-tested triangles traversed without its scene");
+  return FlatBvhQuery{bvh, scene};
+}
+}  // namespace
+
+FlatHit flat_bvh_intersect(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax, const Scene* scene) {
+  const glsl::BvhHit h = glsl::bvh_intersect(query_of(bvh, scene), origin, dir, tmin, tmax);
   if (h.triangle == BVH_STACK_OVERFLOW) throw Error("flat BVH traversal stack overflow (a tree not from build_flat_bvh?)");
   FlatHit hit;
   if (h.triangle == BVH_INVALID_TRIANGLE) return hit;
@@ -265,8 +288,8 @@ FlatHit flat_bvh_intersect(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin
   return hit;
 }
 
-bool flat_bvh_occluded(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax) {
-  const uint32_t r = glsl::bvh_occluded(bvh, origin, dir, tmin, tmax);
+bool flat_bvh_occluded(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax, const Scene* scene) {
+  const uint32_t r = glsl::bvh_occluded(query_of(bvh, scene), origin, dir, tmin, tmax);
   if (r == BVH_STACK_OVERFLOW) throw Error("flat BVH traversal stack overflow (a tree not from build_flat_bvh?)");
   return r == BVH_OCCLUDED;
 }

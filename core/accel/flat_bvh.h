@@ -29,6 +29,7 @@ struct FlatBvhStats {
   uint32_t triangle_refs = 0;    // triangles[] size: scene triangles + spatial-split copies
   uint32_t max_leaf_size = 0;    // largest leaf, in triangles
   uint32_t skipped_triangles = 0;  // with non-finite vertices, left out of the tree
+  uint32_t alpha_tested_refs = 0;  // triangles[] flagged BVH_TRIANGLE_ALPHA_TESTED
   double build_ms = 0.0;         // Embree build + flattening
 };
 
@@ -45,9 +46,12 @@ FlatBvh build_flat_bvh(const Scene& scene, const FlatBvhOptions& options = {});
 // Embree's barycentrics), so the CPU shading code consumes either.
 using FlatHit = Hit;
 
-// Closest hit with tmin <= t < tmax, by the shared traversal.
-FlatHit flat_bvh_intersect(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax);
+// Closest hit with tmin <= t < tmax, by the shared traversal. `scene`, the one the tree was built
+// from, answers the alpha tests (triangle_alpha_passes); a tree with alpha-tested triangles
+// (stats.alpha_tested_refs > 0) needs it, else sst::Error.
+FlatHit flat_bvh_intersect(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax,
+                           const Scene* scene = nullptr);
 // Any hit with tmin <= t < tmax.
-bool flat_bvh_occluded(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax);
+bool flat_bvh_occluded(const FlatBvh& bvh, vec3 origin, vec3 dir, float tmin, float tmax, const Scene* scene = nullptr);
 
 }  // namespace sst

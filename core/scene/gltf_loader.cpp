@@ -22,6 +22,7 @@
 #include <unordered_map>
 
 #include "core/scene/animation.h"
+#include "core/scene/draco_mesh.h"
 #include "core/scene/encoded_image.h"
 #include "core/scene/node_transform.h"
 #include "core/util/error.h"
@@ -42,6 +43,7 @@ struct AcceptedExtension {
   std::string_view why;
 };
 constexpr std::array kAcceptedRequiredExtensions = {
+    AcceptedExtension{"KHR_draco_mesh_compression", "implemented: decoded with Draco (core/scene/draco_mesh.h)"},
     AcceptedExtension{"KHR_lights_punctual", "implemented: point, spot and directional lights"},
     AcceptedExtension{"KHR_materials_emissive_strength", "implemented: scales emissiveFactor"},
     AcceptedExtension{"KHR_mesh_quantization", "implemented: integer POSITION/NORMAL/TEXCOORD_n"},
@@ -49,8 +51,9 @@ constexpr std::array kAcceptedRequiredExtensions = {
     AcceptedExtension{"KHR_xmp_json_ld", "metadata only"},
 };
 // Extensions that are used, not required, and that we implement: no "ignored" warning.
-constexpr std::array<std::string_view, 4> kImplementedExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization", "KHR_texture_transform"};
+constexpr std::array<std::string_view, 5> kImplementedExtensions = {
+    "KHR_draco_mesh_compression", "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_mesh_quantization",
+    "KHR_texture_transform"};
 
 template <class Table>
 bool contains(const Table& table, std::string_view name) {
@@ -302,6 +305,8 @@ class GltfConverter {
     if (!scene_has_lights()) warnings_.add("scene has no lights: the image will be black");
     warnings_.append_to(scene_.warnings);
     if (quantization_) uses_.insert("KHR_mesh_quantization");
+    if (!scene_.colors.empty()) scene_.colors.resize(scene_.positions.size(), vec4(1.0f));
+    if (!scene_.tangents.empty()) scene_.tangents.resize(scene_.positions.size(), vec4(0.0f));
     scene_.gltf_features.assign(uses_.begin(), uses_.end());
   }
 
@@ -702,19 +707,37 @@ class GltfConverter {
     const std::vector<float>* positions = nullptr;
     const std::vector<float>* normals = nullptr;
     const std::vector<float>* uvs = nullptr;
+    const std::vector<float>* colors = nullptr;    // COLOR_0, color_components (3 or 4) per vertex
+    int color_components = 4;
+    const std::vector<float>* tangents = nullptr;  // TANGENT, 4 per vertex
     size_t count = 0;
   };
 
-  Attributes read_attributes(const tinygltf::Primitive& prim, const std::string& what, int uv_set) {
+  // `draco`: the primitive's decoded KHR_draco_mesh_compression data, whose attributes replace
+  // the accessors' (and skip their type rules: the decoder returns floats).
+  Attributes read_attributes(const tinygltf::Primitive& prim, const std::string& what, int uv_set,
+                             const DracoPrimitive* draco) {
     using namespace std::string_literals;
     constexpr int F = TINYGLTF_COMPONENT_TYPE_FLOAT, B = TINYGLTF_COMPONENT_TYPE_BYTE,
                   UB = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, S = TINYGLTF_COMPONENT_TYPE_SHORT,
                   US = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    auto require = [&](int index, std::initializer_list<int> allowed, bool normalized_only, const char* semantic) {
+      if (!(draco && draco->attributes.count(semantic))) require_types(index, allowed, normalized_only, what + " " + semantic);
+    };
+    auto values = [&](int index, int components, const char* semantic) -> const std::vector<float>* {
+      if (draco && draco->attributes.count(semantic)) {
+        if (draco->components.at(semantic) != components)
+          fail(what + " Draco attribute " + semantic + " has " + std::to_string(draco->components.at(semantic)) +
+               " components (needs " + std::to_string(components) + ")");
+        return &draco->attributes.at(semantic);
+      }
+      return &float_attribute(index, components, semantic, what);
+    };
     Attributes at;
     int pos = prim.attributes.at("POSITION");
-    if (quantization_) require_types(pos, {F, B, UB, S, US}, false, what + " POSITION");
-    else require_types(pos, {F}, false, what + " POSITION");
-    at.positions = &float_attribute(pos, 3, "POSITION", what);
+    if (quantization_) require(pos, {F, B, UB, S, US}, false, "POSITION");
+    else require(pos, {F}, false, "POSITION");
+    at.positions = values(pos, 3, "POSITION");
     at.count = at.positions->size() / 3;
     auto same_count = [&](const std::vector<float>& v, size_t comps, const char* semantic) {
       if (v.size() / comps != at.count)
@@ -722,19 +745,38 @@ class GltfConverter {
              std::to_string(at.count));
     };
     if (auto it = prim.attributes.find("NORMAL"); it != prim.attributes.end()) {
-      if (quantization_) require_types(it->second, {F, B, S}, true, what + " NORMAL");
-      else require_types(it->second, {F}, false, what + " NORMAL");
-      at.normals = &float_attribute(it->second, 3, "NORMAL", what);
+      if (quantization_) require(it->second, {F, B, S}, true, "NORMAL");
+      else require(it->second, {F}, false, "NORMAL");
+      at.normals = values(it->second, 3, "NORMAL");
       same_count(*at.normals, 3, "NORMAL");
     }
     const std::string texcoord = "TEXCOORD_" + std::to_string(uv_set);
     if (auto it = prim.attributes.find(texcoord); it != prim.attributes.end()) {
-      if (quantization_) require_types(it->second, {F, B, UB, S, US}, false, what + " " + texcoord);
-      else require_types(it->second, {F, UB, US}, true, what + " " + texcoord);
-      at.uvs = &float_attribute(it->second, 2, texcoord.c_str(), what);
+      if (quantization_) require(it->second, {F, B, UB, S, US}, false, texcoord.c_str());
+      else require(it->second, {F, UB, US}, true, texcoord.c_str());
+      at.uvs = values(it->second, 2, texcoord.c_str());
       same_count(*at.uvs, 2, texcoord.c_str());
     } else if (uv_set > 0) {
       fail(what + " has no " + texcoord + ", which its material's textures use");
+    }
+    if (auto it = prim.attributes.find("COLOR_0"); it != prim.attributes.end()) {
+      require(it->second, {F, UB, US}, true, "COLOR_0");
+      if (draco && draco->components.count("COLOR_0")) {
+        at.color_components = draco->components.at("COLOR_0") == 3 ? 3 : 4;
+      } else {
+        const tinygltf::Accessor& a = accessor(it->second, what + " COLOR_0");
+        at.color_components = a.type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+      }
+      at.colors = values(it->second, at.color_components, "COLOR_0");
+      same_count(*at.colors, size_t(at.color_components), "COLOR_0");
+      uses_.insert("COLOR_0");
+    }
+    if (auto it = prim.attributes.find("TANGENT"); it != prim.attributes.end()) {
+      if (quantization_) require(it->second, {F, B, S}, true, "TANGENT");
+      else require(it->second, {F}, false, "TANGENT");
+      at.tangents = values(it->second, 4, "TANGENT");
+      same_count(*at.tangents, 4, "TANGENT");
+      uses_.insert("TANGENT");
     }
     return at;
   }
@@ -791,6 +833,36 @@ class GltfConverter {
     if (rig_node >= 0 && !moving.positions.empty()) rig_.meshes.push_back(std::move(moving));
   }
 
+  // The primitive's KHR_draco_mesh_compression data decoded (once per bufferView: instanced meshes
+  // share it), or null without the extension.
+  const DracoPrimitive* draco_primitive(const tinygltf::Primitive& prim, const std::string& what) {
+    const tinygltf::Value* ext = extension(prim.extensions, "KHR_draco_mesh_compression");
+    if (!ext) return nullptr;
+    const double view = number_or(member(*ext, "bufferView"), -1.0);
+    const tinygltf::Value* attributes = member(*ext, "attributes");
+    if (!(view >= 0.0 && view < double(model_.bufferViews.size()) && view == std::floor(view)))
+      fail(what + " has a KHR_draco_mesh_compression without a valid bufferView");
+    if (!attributes || !attributes->IsObject())
+      fail(what + " has a KHR_draco_mesh_compression without attributes");
+    const int view_index = int(view);
+    if (auto it = draco_cache_.find(view_index); it != draco_cache_.end()) return &it->second;
+    std::map<std::string, DracoAttributeRequest> requests;
+    for (const std::string& semantic : attributes->Keys()) {
+      const double id = number_or(&attributes->Get(semantic), -1.0);
+      if (!(id >= 0.0 && id <= double(INT32_MAX) && id == std::floor(id)))
+        fail(what + " has a KHR_draco_mesh_compression attribute " + semantic + " that is not a whole number");
+      DracoAttributeRequest& r = requests[semantic];
+      r.unique_id = int(id);
+      if (auto a = prim.attributes.find(semantic); a != prim.attributes.end())
+        r.normalized = accessor(a->second, what + " " + semantic).normalized;
+    }
+    const size_t length = model_.bufferViews[view_index].byteLength;
+    const unsigned char* bytes = checked_bytes(view_index, 0, length, 1, 1, what + " Draco data");
+    uses_.insert("KHR_draco_mesh_compression");
+    return &draco_cache_.emplace(view_index, decode_draco_primitive(bytes, length, requests, file_ + ": " + what))
+                .first->second;
+  }
+
   static const char* mode_name(int mode) {
     switch (mode) {
       case TINYGLTF_MODE_POINTS: return "POINTS";
@@ -819,13 +891,14 @@ class GltfConverter {
     uint32_t material = gltf_material < 0 ? uint32_t(model_.materials.size()) : uint32_t(gltf_material);
 
     const UvMapping& uv = material_uv_mapping(gltf_material);
-    Attributes at = read_attributes(prim, what, uv.set);
+    const DracoPrimitive* draco = draco_primitive(prim, what);
+    Attributes at = read_attributes(prim, what, uv.set, draco);
     std::vector<float> mapped_uvs;
     if (at.uvs && !uv.affine_identity()) {
       mapped_uvs = uv.apply(*at.uvs);
       at.uvs = &mapped_uvs;
     }
-    std::vector<uvec3> tris = assemble(mode, read_indices(prim, at.count, what), what);
+    std::vector<uvec3> tris = assemble(mode, draco ? draco->indices : read_indices(prim, at.count, what), what);
     if (at.normals) append_smooth(at, tris, world, material, what);
     else append_flat(at, tris, world, material, what);
   }
@@ -845,6 +918,35 @@ class GltfConverter {
     return at.uvs ? vec2((*at.uvs)[2 * i], (*at.uvs)[2 * i + 1]) : vec2(0.0f);
   }
 
+  // COLOR_0 and TANGENT of the vertex just appended from object vertex i: the scene's arrays stay
+  // empty until a primitive has them, then hold every vertex (defaults where a primitive has
+  // none). Tangents of moving meshes are left zero, so that the kernels derive them from the
+  // posed triangle.
+  void append_vertex_extras(const Attributes& at, uint32_t i, const WorldTransform& t) {
+    const size_t before = scene_.positions.size() - 1;
+    if (at.colors || !scene_.colors.empty()) {
+      scene_.colors.resize(before, vec4(1.0f));
+      vec4 c(1.0f);
+      if (at.colors) {
+        const float* v = at.colors->data() + size_t(at.color_components) * i;
+        c = vec4(v[0], v[1], v[2], at.color_components == 4 ? v[3] : 1.0f);
+      }
+      scene_.colors.push_back(glm::clamp(c, vec4(0.0f), vec4(1.0f)));
+    }
+    if (at.tangents || !scene_.tangents.empty()) {
+      scene_.tangents.resize(before, vec4(0.0f));
+      vec4 out(0.0f);
+      if (at.tangents && !recording_) {
+        const float* v = at.tangents->data() + 4 * size_t(i);
+        const vec3 world = vec3(glm::dmat3(t.m) * glm::dvec3(v[0], v[1], v[2]));
+        // A mirroring transform reverses cross(normal, tangent): the bitangent keeps its side.
+        const float w = (v[3] < 0.0f) != t.mirrored ? -1.0f : 1.0f;
+        if (usable(world)) out = vec4(unit(world), w);
+      }
+      scene_.tangents.push_back(out);
+    }
+  }
+
   uint32_t checked_vertex_base(size_t extra, const std::string& what) const {
     if (scene_.positions.size() + extra >= size_t(UINT32_MAX)) fail("too many vertices (more than 2^32) at " + what);
     return uint32_t(scene_.positions.size());
@@ -862,6 +964,7 @@ class GltfConverter {
       if (!fresh) return it->second;
       it->second = checked_vertex_base(1, what);
       scene_.positions.push_back(world_position(t, at, i, what));
+      append_vertex_extras(at, i, t);
       const auto& n = *at.normals;
       vec3 object_normal(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
       if (recording_) {
@@ -910,6 +1013,7 @@ class GltfConverter {
       uint32_t b = checked_vertex_base(3, what);
       for (int k = 0; k < 3; ++k) {
         scene_.positions.push_back(p[k]);
+        append_vertex_extras(at, tri[k], t);
         scene_.normals.push_back(unit(fn));
         scene_.uvs.push_back(uv_of(at, tri[k]));
         if (recording_) {  // a zero normal: posing rebuilds it from the face, as here
@@ -1059,15 +1163,25 @@ class GltfConverter {
     if (!is_finite(out.emission) || glm::any(glm::lessThan(out.emission, vec3(0.0f))))
       fail(what + " has a negative or non-finite emission (emissiveFactor * emissiveStrength)");
     out.double_sided = g.doubleSided;
+    out.alpha = pbr.baseColorFactor.size() == 4 ? unit_factor(pbr.baseColorFactor[3], what + " baseColorFactor alpha") : 1.0f;
+    if (g.alphaMode == "MASK") {
+      out.alpha_mode = AlphaMode::Mask;
+      if (!std::isfinite(g.alphaCutoff) || g.alphaCutoff < 0.0)
+        fail(what + " has alphaCutoff " + std::to_string(g.alphaCutoff) + " (must be a number >= 0)");
+      out.alpha_cutoff = float(g.alphaCutoff);
+    } else if (g.alphaMode == "BLEND") {
+      out.alpha_mode = AlphaMode::Blend;
+    } else if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE") {
+      fail(what + " has alphaMode '" + g.alphaMode + "' (must be OPAQUE, MASK or BLEND)");
+    }
+    if (used && out.alpha_mode != AlphaMode::Opaque)
+      uses_.insert(out.alpha_mode == AlphaMode::Mask ? "alphaMode MASK" : "alphaMode BLEND (as a cutout at 0.5)");
     if (used) attach_textures(g, what, out);
     return out;
   }
 
   void attach_textures(const tinygltf::Material& g, const std::string& what, Material& out) {
-    if (!g.alphaMode.empty() && g.alphaMode != "OPAQUE")
-      warnings_.add("alpha modes other than OPAQUE are ignored: surfaces are opaque");
-    if (g.normalTexture.index >= 0 || g.occlusionTexture.index >= 0)
-      warnings_.add("normal and occlusion textures are ignored");
+    if (g.occlusionTexture.index >= 0) warnings_.add("occlusion textures are ignored (they model what GI computes)");
     for (const auto& [name, value] : g.extensions)  // those in extensionsUsed were reported already
       if (!contains(kImplementedExtensions, name) && !contains(model_.extensionsUsed, std::string_view(name)))
         warnings_.add("material extension " + name + " ignored");
@@ -1075,6 +1189,20 @@ class GltfConverter {
     out.base_color_texture = texture_slot(pbr.baseColorTexture, true, what + " baseColorTexture");
     out.metallic_roughness_texture = texture_slot(pbr.metallicRoughnessTexture, false, what + " metallicRoughnessTexture");
     out.emissive_texture = texture_slot(g.emissiveTexture, true, what + " emissiveTexture");
+    out.normal_texture = texture_slot(as_texture_info(g.normalTexture), false, what + " normalTexture");
+    if (out.normal_texture >= 0) {
+      if (!std::isfinite(g.normalTexture.scale)) fail(what + " has a non-finite normalTexture scale");
+      out.normal_scale = float(g.normalTexture.scale);
+      uses_.insert("normalTexture");
+    }
+  }
+
+  static tinygltf::TextureInfo as_texture_info(const tinygltf::NormalTextureInfo& n) {
+    tinygltf::TextureInfo t;
+    t.index = n.index;
+    t.texCoord = n.texCoord;
+    t.extensions = n.extensions;
+    return t;
   }
 
   // The UV set and KHR_texture_transform of one texture reference, checked.
@@ -1114,10 +1242,12 @@ class GltfConverter {
     if (!fresh || gltf_material < 0 || size_t(gltf_material) >= model_.materials.size()) return it->second;
     const tinygltf::Material& g = model_.materials[gltf_material];
     const std::string what = quoted_name("material", gltf_material, g.name);
+    const tinygltf::TextureInfo normal = as_texture_info(g.normalTexture);
     const std::pair<const tinygltf::TextureInfo*, const char*> slots[] = {
         {&g.pbrMetallicRoughness.baseColorTexture, " baseColorTexture"},
         {&g.pbrMetallicRoughness.metallicRoughnessTexture, " metallicRoughnessTexture"},
-        {&g.emissiveTexture, " emissiveTexture"}};
+        {&g.emissiveTexture, " emissiveTexture"},
+        {&normal, " normalTexture"}};
     bool first = true;
     for (const auto& [info, slot] : slots) {
       if (info->index < 0) continue;
@@ -1253,6 +1383,7 @@ class GltfConverter {
   std::map<TextureKey, int> texture_slots_;
   std::map<int, UvMapping> uv_mappings_;  // by glTF material
   std::set<std::string> uses_;            // Scene::gltf_features
+  std::map<int, DracoPrimitive> draco_cache_;  // by bufferView
   std::vector<TextureKey> texture_keys_;
 };
 
@@ -1305,6 +1436,48 @@ void check_gltf_json(std::string_view json_text, const std::string& name) {
   }
 }
 
+// tinygltf 2.8 refuses a primitive whose indices accessor has no bufferView, which is how
+// KHR_draco_mesh_compression declares them (the indices are in the Draco data): such primitives
+// lose their "indices" before tinygltf sees the JSON, and the loader takes them from Draco. The
+// JSON text to hand tinygltf, when it changes.
+std::optional<std::string> without_draco_index_accessors(std::string_view json_text) {
+  nlohmann::json j = nlohmann::json::parse(json_text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("meshes") || !j["meshes"].is_array()) return std::nullopt;
+  const nlohmann::json* accessors = j.contains("accessors") && j["accessors"].is_array() ? &j["accessors"] : nullptr;
+  bool changed = false;
+  for (nlohmann::json& mesh : j["meshes"]) {
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (nlohmann::json& prim : mesh["primitives"]) {
+      if (!prim.is_object() || !prim.contains("indices") || !prim.contains("extensions") ||
+          !prim["extensions"].is_object() || !prim["extensions"].contains("KHR_draco_mesh_compression"))
+        continue;
+      const nlohmann::json& index = prim["indices"];
+      const bool listed = accessors && index.is_number_unsigned() && index.get<uint64_t>() < accessors->size();
+      if (listed && (*accessors)[index.get<size_t>()].is_object() && (*accessors)[index.get<size_t>()].contains("bufferView"))
+        continue;
+      prim.erase("indices");
+      changed = true;
+    }
+  }
+  if (!changed) return std::nullopt;
+  return j.dump();
+}
+
+// A GLB with its JSON chunk replaced by `json_text` (the BIN chunk and anything after it kept).
+std::string glb_with_json(std::string_view glb, std::string_view old_json, std::string json_text) {
+  while (json_text.size() % 4) json_text.push_back(' ');
+  std::string out(glb.substr(0, 12));
+  auto put32 = [&](uint32_t v, size_t at) { std::memcpy(out.data() + at, &v, 4); };
+  const std::string_view rest = glb.substr(std::min(glb.size(), 20 + old_json.size()));
+  out += std::string(8, '\0');
+  put32(uint32_t(json_text.size()), 12);
+  put32(0x4E4F534Au, 16);  // "JSON"
+  out += json_text;
+  out += rest;
+  put32(uint32_t(out.size()), 8);
+  return out;
+}
+
 // tinygltf's file callbacks, except that only regular files are read: its own FileExists opens
 // the file, which blocks forever on a FIFO, and a directory reads as 2^63 bytes.
 bool path_exists(const std::string& path, void*) {
@@ -1323,7 +1496,13 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
 tinygltf::Model parse(std::string_view bytes, const std::string& base_dir, const std::string& name) {
   if (bytes.size() > size_t(UINT32_MAX)) throw Error(name + ": file larger than 4 GiB");
   bool binary = bytes.size() >= 4 && bytes.substr(0, 4) == "glTF";
-  check_gltf_json(binary ? checked_glb_json(bytes, name) : bytes, name);
+  const std::string_view json_text = binary ? checked_glb_json(bytes, name) : bytes;
+  check_gltf_json(json_text, name);
+  std::string rewritten;
+  if (std::optional<std::string> j = without_draco_index_accessors(json_text)) {
+    rewritten = binary ? glb_with_json(bytes, json_text, std::move(*j)) : std::move(*j);
+    bytes = rewritten;
+  }
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(&keep_encoded_image, nullptr);
   gltf.SetFsCallbacks({&path_exists, &tinygltf::ExpandFilePath, &read_regular_file, &tinygltf::WriteWholeFile, nullptr});

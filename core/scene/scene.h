@@ -11,6 +11,13 @@
 
 namespace sst {
 
+// How a material's alpha decides which hits count (glTF alphaMode).
+enum class AlphaMode {
+  Opaque,  // every hit counts
+  Mask,    // a hit counts where alpha >= alpha_cutoff
+  Blend,   // rendered as Mask with cutoff 0.5: a cutout, not partial transparency (README, loader policy)
+};
+
 // glTF metallic-roughness material. Texture indices are -1 when absent.
 struct Material {
   std::string name;
@@ -22,6 +29,11 @@ struct Material {
   vec3 emission{0.0f};  // emissiveFactor * KHR_materials_emissive_strength (radiance)
   int emissive_texture = -1;
   bool double_sided = false;
+  float alpha = 1.0f;  // baseColorFactor's alpha; the base-colour texture's and COLOR_0's multiply it
+  AlphaMode alpha_mode = AlphaMode::Opaque;
+  float alpha_cutoff = 0.5f;  // Mask only
+  int normal_texture = -1;    // tangent-space normal map (linear)
+  float normal_scale = 1.0f;  // scales the map's x and y
 };
 
 enum class LightType { Point, Spot, Directional };
@@ -55,6 +67,11 @@ struct Scene {
   std::vector<vec3> positions;
   std::vector<vec3> normals;
   std::vector<vec2> uvs;
+  // Per vertex, or empty when no primitive has them: glTF TANGENT (unit xyz, bitangent sign w; zero
+  // where a primitive has none: the kernels then derive a tangent from the triangle's uvs) and
+  // COLOR_0 (linear RGBA; 1 where a primitive has none).
+  std::vector<vec4> tangents;
+  std::vector<vec4> colors;
   std::vector<uvec3> triangles;
   std::vector<uint32_t> triangle_material;  // index into materials, one per triangle
 

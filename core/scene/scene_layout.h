@@ -10,9 +10,10 @@
 // Five std430 storage buffers (no vec3 arrays: every vec3 is followed by a 4-byte scalar, which
 // std430 packs into the vec3's 16-byte slot, exactly like the C++ layout). A shader declares them
 // with SCENE_BUFFERS(first_binding) (GLSL only, below) under these names:
-//   SceneVertex   scene_vertices[]   32 bytes each, Scene::positions/normals/uvs[i] at index i.
+//   SceneVertex   scene_vertices[]   64 bytes each, Scene::positions/normals/uvs/tangents/colors[i]
+//                                    at index i.
 //   SceneTriangle scene_triangles[]  16 bytes each, Scene::triangles/triangle_material[i] at i.
-//   SceneMaterial scene_materials[]  48 bytes each, Scene::materials[i] at index i.
+//   SceneMaterial scene_materials[]  64 bytes each, Scene::materials[i] at index i.
 //   SceneTexture  scene_textures[]   32 bytes each, Scene::textures[i] at index i.
 //   uint          scene_texels[]     the 8-bit decoding tables (SCENE_TEXELS_*_TABLE), then the
 //                                    texels of all textures, one after the other (see
@@ -29,6 +30,7 @@
 namespace sst::glsl {
 using uint = uint32_t;
 using glm::vec3;
+using glm::vec4;
 #endif
 
 // SceneTexture.wrap_s / wrap_t: the glTF sampler's wrap modes (sst::Wrap).
@@ -46,12 +48,15 @@ using glm::vec3;
 #define SCENE_TEXTURE_RGBA32F 2u
 
 // One vertex: Scene::positions[i], Scene::normals[i] and Scene::uvs[i] (zero when the scene has
-// no uvs), the uv split over the two scalar slots.
+// no uvs), the uv split over the two scalar slots, Scene::tangents[i] and Scene::colors[i] (their
+// defaults when the scene has none).
 struct SceneVertex {
   vec3 position;  // world space
   float u;        // Scene::uvs[i].x
   vec3 normal;    // the vertex (shading) normal as the scene stores it (unit, or zero)
   float v;        // Scene::uvs[i].y
+  vec4 tangent;   // glTF TANGENT: unit xyz and the bitangent's sign w; zero: derived from the uvs
+  vec4 color;     // glTF COLOR_0, linear RGBA; 1 without one
 };
 
 // One triangle: Scene::triangles[i] (indices into scene_vertices[], in winding order: the
@@ -74,6 +79,10 @@ struct SceneMaterial {
   int metallic_roughness_texture;  // index into scene_textures[], or -1 (G = roughness, B = metallic)
   int emissive_texture;            // index into scene_textures[], or -1
   uint double_sided;               // 1: emits (and is lit) on both sides; 0: front only
+  float alpha;                     // baseColorFactor's alpha, x the base-colour texture's and COLOR_0's
+  float alpha_cutoff;              // a hit counts where alpha >= alpha_cutoff; 0: opaque (all count)
+  int normal_texture;              // index into scene_textures[], or -1 (tangent-space normal map)
+  float normal_scale;              // glTF normalTexture.scale: scales the map's x and y
 };
 
 // One texture (sst::Texture): row 0 at the top, sampled bilinearly (or nearest) with its wrap
@@ -178,17 +187,19 @@ inline constexpr uint32_t scene_unorm8_bits[256] = {SCENE_UNORM8_BITS};
 inline constexpr uint32_t scene_texel_tables[SCENE_TEXELS_FIRST_TEXEL] = {SCENE_SRGB_DECODE_BITS, SCENE_UNORM8_BITS};
 static_assert(SCENE_TEXELS_SRGB_TABLE == 0 && SCENE_TEXELS_UNORM8_TABLE == 256 && SCENE_TEXELS_FIRST_TEXEL == 512);
 
-static_assert(sizeof(SceneVertex) == 32);
+static_assert(sizeof(SceneVertex) == 64);
 static_assert(offsetof(SceneVertex, position) == 0);
 static_assert(offsetof(SceneVertex, u) == 12);
 static_assert(offsetof(SceneVertex, normal) == 16);
 static_assert(offsetof(SceneVertex, v) == 28);
+static_assert(offsetof(SceneVertex, tangent) == 32);
+static_assert(offsetof(SceneVertex, color) == 48);
 static_assert(sizeof(SceneTriangle) == 16);
 static_assert(offsetof(SceneTriangle, v0) == 0);
 static_assert(offsetof(SceneTriangle, v1) == 4);
 static_assert(offsetof(SceneTriangle, v2) == 8);
 static_assert(offsetof(SceneTriangle, material) == 12);
-static_assert(sizeof(SceneMaterial) == 48);
+static_assert(sizeof(SceneMaterial) == 64);
 static_assert(offsetof(SceneMaterial, base_color) == 0);
 static_assert(offsetof(SceneMaterial, metallic) == 12);
 static_assert(offsetof(SceneMaterial, emission) == 16);
@@ -197,6 +208,10 @@ static_assert(offsetof(SceneMaterial, base_color_texture) == 32);
 static_assert(offsetof(SceneMaterial, metallic_roughness_texture) == 36);
 static_assert(offsetof(SceneMaterial, emissive_texture) == 40);
 static_assert(offsetof(SceneMaterial, double_sided) == 44);
+static_assert(offsetof(SceneMaterial, alpha) == 48);
+static_assert(offsetof(SceneMaterial, alpha_cutoff) == 52);
+static_assert(offsetof(SceneMaterial, normal_texture) == 56);
+static_assert(offsetof(SceneMaterial, normal_scale) == 60);
 static_assert(sizeof(SceneTexture) == 32);
 static_assert(offsetof(SceneTexture, texel_offset) == 0);
 static_assert(offsetof(SceneTexture, width) == 4);

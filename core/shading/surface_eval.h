@@ -13,6 +13,8 @@
 //   SCENE_POSITION(i)            vec3: vertex i's position
 //   SCENE_NORMAL(i)              vec3: vertex i's shading normal (unit, or zero)
 //   SCENE_UV(i)                  vec2: vertex i's uv (zero when the scene has none)
+//   SCENE_TANGENT(i)             vec4: vertex i's tangent and bitangent sign (zero when it has none)
+//   SCENE_COLOR(i)               vec4: vertex i's COLOR_0 (1 when it has none)
 //   SCENE_MATERIAL(m)            SceneMaterial: material m, its texture indices >= 0 only for
 //                                textures that exist
 //   SCENE_TEXTURE_SAMPLE(k, uv)  vec4: texture k (>= 0) at uv (core/scene/texture_sample.h)
@@ -24,9 +26,11 @@
 #define SST_CORE_SHADING_SURFACE_EVAL_H
 #include "core/math/vector_math.h"
 #include "core/scene/scene_layout.h"
+#include "core/scene/triangle_attributes.h"
 
 #if !defined(SCENE_CTX_PARAM) || !defined(SCENE_CTX) || !defined(SCENE_TRIANGLE) || !defined(SCENE_POSITION) || \
-    !defined(SCENE_NORMAL) || !defined(SCENE_UV) || !defined(SCENE_MATERIAL) || !defined(SCENE_TEXTURE_SAMPLE)
+    !defined(SCENE_NORMAL) || !defined(SCENE_UV) || !defined(SCENE_TANGENT) || !defined(SCENE_COLOR) ||   \
+    !defined(SCENE_MATERIAL) || !defined(SCENE_TEXTURE_SAMPLE)
 #error "define the SCENE_* hooks before including core/shading/surface_eval.h"
 #endif
 
@@ -47,25 +51,50 @@ struct Surface {
   vec3 emission SST_DEFAULT(vec3(0.0f));  // radiance leaving toward the viewer (0 from the back of one-sided)
 };
 
-// (1 - b.x - b.y) * a + b.x * b1 + b.y * b2: a point of the triangle (a, b1, b2) at barycentrics b.
-SST_FUNC vec3 barycentric_mix3(vec3 a, vec3 b1, vec3 b2, vec2 b) {
+// The unit shading normal n bent by material m's tangent-space normal map at uv. The tangent is
+// the vertices' TANGENT interpolated, or, where they have none, the triangle's dp/du (per
+// triangle, unlike MikkTSpace's per-vertex average: the same on planar mappings, faceted on
+// curved ones), made orthogonal to n; the bitangent is cross(n, tangent) * w, w the TANGENT's
+// sign or, derived, the sign that makes it -dp/dv (glTF's v runs down the image, a normal map's
+// +y up it). n is returned unbent where no frame exists (no uv parametrisation) or where the
+// bent normal would cross the geometric normal ng's plane, which shading cannot take.
+SST_FUNC vec3 normal_mapped(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(SceneMaterial) m, vec2 b, vec2 uv, vec3 n,
+                            vec3 ng) {
+  vec4 t0 = SCENE_TANGENT(t.v0);
+  vec4 t1 = SCENE_TANGENT(t.v1);
+  vec4 t2 = SCENE_TANGENT(t.v2);
   SST_PRECISE float b0 = 1.0f - b.x - b.y;
-  SST_PRECISE vec3 r = b0 * a + b.x * b1 + b.y * b2;
+  SST_PRECISE vec3 tangent = b0 * vec3(t0.x, t0.y, t0.z) + b.x * vec3(t1.x, t1.y, t1.z) + b.y * vec3(t2.x, t2.y, t2.z);
+  float w = t0.w < 0.0f ? -1.0f : 1.0f;
+  if (dot3(tangent, tangent) == 0.0f) {
+    vec3 p0 = SCENE_POSITION(t.v0);
+    vec2 uv0 = SCENE_UV(t.v0);
+    SST_PRECISE vec3 dp1 = SCENE_POSITION(t.v1) - p0;
+    SST_PRECISE vec3 dp2 = SCENE_POSITION(t.v2) - p0;
+    SST_PRECISE vec2 duv1 = SCENE_UV(t.v1) - uv0;
+    SST_PRECISE vec2 duv2 = SCENE_UV(t.v2) - uv0;
+    SST_PRECISE float det = duv1.x * duv2.y - duv1.y * duv2.x;
+    if (det == 0.0f) return n;
+    SST_PRECISE vec3 dpdu = (dp1 * duv2.y - dp2 * duv1.y) / det;
+    SST_PRECISE vec3 dpdv = (dp2 * duv1.x - dp1 * duv2.x) / det;
+    tangent = dpdu;
+    w = dot3(cross3(n, dpdu), dpdv) > 0.0f ? -1.0f : 1.0f;
+  }
+  SST_PRECISE vec3 tp = tangent - n * dot3(n, tangent);
+  float tl = length3(tp);
+  if (!(tl > 0.0f) || !is_finite(tl)) return n;
+  SST_PRECISE vec3 tu = tp / tl;
+  SST_PRECISE vec3 bt = cross3(n, tu) * w;
+  vec4 texel = SCENE_TEXTURE_SAMPLE(m.normal_texture, uv);
+  SST_PRECISE float lx = (texel.x * 2.0f - 1.0f) * m.normal_scale;
+  SST_PRECISE float ly = (texel.y * 2.0f - 1.0f) * m.normal_scale;
+  SST_PRECISE float lz = texel.z * 2.0f - 1.0f;
+  SST_PRECISE vec3 bent = tu * lx + bt * ly + n * lz;
+  float bl = length3(bent);
+  if (!(bl > 0.0f) || !is_finite(bl)) return n;
+  SST_PRECISE vec3 r = bent / bl;
+  if (dot3(r, ng) * dot3(n, ng) <= 0.0f) return n;
   return r;
-}
-
-SST_FUNC vec2 barycentric_mix2(vec2 a, vec2 b1, vec2 b2, vec2 b) {
-  SST_PRECISE float b0 = 1.0f - b.x - b.y;
-  SST_PRECISE vec2 r = b0 * a + b.x * b1 + b.y * b2;
-  return r;
-}
-
-SST_FUNC vec2 triangle_uv(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, vec2 b) {
-  return barycentric_mix2(SCENE_UV(t.v0), SCENE_UV(t.v1), SCENE_UV(t.v2), b);
-}
-
-SST_FUNC vec4 texture_or_one(SCENE_CTX_PARAM int texture, vec2 uv) {
-  return texture >= 0 ? SCENE_TEXTURE_SAMPLE(texture, uv) : vec4(1.0f);
 }
 
 // Unit, by winding; +z for a degenerate triangle.
@@ -93,6 +122,7 @@ SST_FUNC vec3 triangle_emission(SCENE_CTX_PARAM uint tri, vec2 barycentric, bool
   SceneTriangle t = SCENE_TRIANGLE(tri);
   SceneMaterial m = SCENE_MATERIAL(t.material);
   if (!front_face && m.double_sided == 0u) return vec3(0.0f);
+  if (m.alpha_cutoff > 0.0f && surface_alpha(SCENE_CTX t, m, barycentric) < m.alpha_cutoff) return vec3(0.0f);
   if (m.emissive_texture < 0) return m.emission;
   vec4 texel = texture_or_one(SCENE_CTX m.emissive_texture, triangle_uv(SCENE_CTX t, barycentric));
   SST_PRECISE vec3 e = m.emission * vec3(texel.x, texel.y, texel.z);
@@ -105,24 +135,29 @@ SST_FUNC Surface make_surface(SCENE_CTX_PARAM uint tri, vec2 b, vec3 incoming) {
   Surface s;
   SceneTriangle t = SCENE_TRIANGLE(tri);
   // Recompute the point from the triangle rather than origin + t*dir: it is exact on the surface.
-  s.p = barycentric_mix3(SCENE_POSITION(t.v0), SCENE_POSITION(t.v1), SCENE_POSITION(t.v2), b);
+  vec3 v0 = SCENE_POSITION(t.v0);
+  vec3 v1 = SCENE_POSITION(t.v1);
+  vec3 v2 = SCENE_POSITION(t.v2);
+  s.p = barycentric_mix3(v0, v1, v2, b);
   s.triangle = tri;
   s.material = t.material;
   s.ng = triangle_geometric_normal(SCENE_CTX tri);
   s.front_face = dot3(s.ng, incoming) < 0.0f;
   if (!s.front_face) s.ng = -s.ng;
+  s.uv = triangle_uv(SCENE_CTX t, b);
+  SceneMaterial m = SCENE_MATERIAL(s.material);
   vec3 ns = barycentric_mix3(SCENE_NORMAL(t.v0), SCENE_NORMAL(t.v1), SCENE_NORMAL(t.v2), b);
   float len = length3(ns);
   ns = len > 0.0f && is_finite(len) ? ns / len : s.ng;
+  if (m.normal_texture >= 0) ns = normal_mapped(SCENE_CTX t, m, b, s.uv, ns, s.ng);
   // Shading normals are interpolated per vertex and may point away from the viewer's side;
   // keep them in the hemisphere of the geometric normal so shading never sees a back face.
   if (dot3(ns, s.ng) < 0.0f) ns = -ns;
   s.ns = ns;
-  s.uv = triangle_uv(SCENE_CTX t, b);
 
-  SceneMaterial m = SCENE_MATERIAL(s.material);
   vec4 base_texel = texture_or_one(SCENE_CTX m.base_color_texture, s.uv);
-  SST_PRECISE vec3 base = m.base_color * vec3(base_texel.x, base_texel.y, base_texel.z);
+  vec4 color = triangle_color(SCENE_CTX t, b);
+  SST_PRECISE vec3 base = m.base_color * vec3(base_texel.x, base_texel.y, base_texel.z) * vec3(color.x, color.y, color.z);
   s.base_color = base;
   vec4 mr = texture_or_one(SCENE_CTX m.metallic_roughness_texture, s.uv);
   SST_PRECISE float metallic = m.metallic * mr.z;

@@ -15,8 +15,9 @@ layout(std430, binding = 7) writeonly buffer GBuffer { GBufferTexel gbuffer[]; }
 layout(push_constant) uniform Push { ViewParams view; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
-#include "core/accel/bvh_traverse.h"
+// The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"
+#include "core/accel/bvh_traverse.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/render/pinhole.h"
 

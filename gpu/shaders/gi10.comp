@@ -36,6 +36,8 @@ layout(push_constant) uniform Push { Gi10Push push; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON gi_frame_constants.scene_epsilon
+// The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
+#include "gpu/shaders/surface.glsl"
 #include "core/accel/bvh_traverse.h"
 #include "gpu/shaders/light_sampler.glsl"
 #include "gpu/shaders/ray_queries.glsl"

@@ -22,6 +22,8 @@ layout(push_constant) uniform Push { PathTraceParams params; };
 #define BVH_NODE(i) bvh_nodes[i]
 #define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
+// The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
+#include "gpu/shaders/surface.glsl"
 #include "core/accel/bvh_traverse.h"
 #include "core/render/pinhole.h"
 #include "gpu/shaders/path_trace.glsl"

@@ -20,8 +20,12 @@
 #define SCENE_POSITION(i) scene_vertices[i].position
 #define SCENE_NORMAL(i) scene_vertices[i].normal
 #define SCENE_UV(i) vec2(scene_vertices[i].u, scene_vertices[i].v)
+#define SCENE_TANGENT(i) scene_vertices[i].tangent
+#define SCENE_COLOR(i) scene_vertices[i].color
 #define SCENE_MATERIAL(m) scene_materials[m]
 #define SCENE_TEXTURE_SAMPLE(k, uv) texture_sample(scene_textures[k], uv)
 #include "core/shading/surface_eval.h"
+// The alpha test of the BVH traversal (core/accel/bvh_traverse.h, included after this file).
+#define BVH_ALPHA_TEST(triangle, b) triangle_alpha_passes(triangle, b)
 
 #endif  // SST_GPU_SHADERS_SURFACE_GLSL

@@ -62,6 +62,8 @@ void check_packing(const Scene& scene, const PackedScene& packed) {
     vec2 uv = scene.uvs.empty() ? vec2(0.0f) : scene.uvs[i];
     ASSERT_EQ(bits(v.u), bits(uv.x)) << i;
     ASSERT_EQ(bits(v.v), bits(uv.y)) << i;
+    ASSERT_EQ(v.tangent, scene.tangents.empty() ? vec4(0.0f) : scene.tangents[i]) << i;
+    ASSERT_EQ(v.color, scene.colors.empty() ? vec4(1.0f) : scene.colors[i]) << i;
   }
   const uint32_t nv = uint32_t(packed.vertices.size()), nm = uint32_t(packed.materials.size());
   for (size_t i = 0; i < packed.triangles.size(); ++i) {
@@ -79,6 +81,10 @@ void check_packing(const Scene& scene, const PackedScene& packed) {
     EXPECT_EQ(g.metallic, m.metallic);
     EXPECT_EQ(g.roughness, m.roughness);
     EXPECT_EQ(g.double_sided, m.double_sided ? 1u : 0u);
+    EXPECT_EQ(g.alpha, m.alpha);
+    EXPECT_EQ(g.alpha_cutoff, m.alpha_mode == AlphaMode::Opaque ? 0.0f : m.alpha_mode == AlphaMode::Blend ? 0.5f : m.alpha_cutoff);
+    EXPECT_EQ(g.normal_texture, m.normal_texture < nt ? m.normal_texture : -1);
+    EXPECT_EQ(g.normal_scale, m.normal_scale);
     for (int tex : {g.base_color_texture, g.metallic_roughness_texture, g.emissive_texture})
       EXPECT_TRUE(tex == -1 || (tex >= 0 && tex < nt)) << "material " << i << " texture " << tex;
     EXPECT_EQ(g.base_color_texture, m.base_color_texture < nt ? m.base_color_texture : -1);
@@ -115,8 +121,8 @@ void check_packing(const Scene& scene, const PackedScene& packed) {
     next = g.texel_offset + words;
   }
   EXPECT_EQ(next, packed.texels.size());
-  EXPECT_EQ(packed.bytes(), packed.vertices.size() * 32 + packed.triangles.size() * 16 +
-                                packed.materials.size() * 48 + packed.textures.size() * 32 + packed.texels.size() * 4);
+  EXPECT_EQ(packed.bytes(), packed.vertices.size() * 64 + packed.triangles.size() * 16 +
+                                packed.materials.size() * 64 + packed.textures.size() * 32 + packed.texels.size() * 4);
 }
 
 TEST(SceneUpload, DecodingTablesAreTheCppOnes) {

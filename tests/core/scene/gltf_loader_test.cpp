@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "core/scene/scene_access.h"
 #include "core/util/error.h"
 #include "tests/core/scene/gltf_test_files.h"
 #include "tests/test_util.h"
@@ -24,6 +25,7 @@ using test::kFloat;
 using test::kUInt;
 using test::kUShort;
 using test::load_error;
+using test::write_png;
 
 void expect_near(vec3 a, vec3 b, float tol = 1e-5f) {
   EXPECT_NEAR(a.x, b.x, tol);
@@ -36,40 +38,6 @@ vec3 geometric_normal(const Scene& s, size_t t) {
   return glm::normalize(glm::cross(s.positions[tri.y] - s.positions[tri.x], s.positions[tri.z] - s.positions[tri.x]));
 }
 
-// A PNG with uncompressed (stored) deflate blocks: enough for tiny test images without zlib.
-// `pixels` are the raw samples, row by row, 16-bit ones big-endian as PNG stores them.
-fs::path write_png(const fs::path& path, int width, int height, int bit_depth, int color_type,
-                   const std::vector<uint8_t>& pixels) {
-  auto crc32 = [](const std::string& data) {
-    uint32_t c = 0xFFFFFFFFu;
-    for (unsigned char byte : data) {
-      c ^= byte;
-      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-    }
-    return c ^ 0xFFFFFFFFu;
-  };
-  auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
-  auto chunk = [&](const std::string& type, const std::string& data) {
-    return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
-  };
-  size_t row_bytes = pixels.size() / size_t(height);
-  std::string raw;
-  for (int y = 0; y < height; ++y) {
-    raw.push_back('\0');  // filter: none
-    raw.append(reinterpret_cast<const char*>(pixels.data()) + y * row_bytes, row_bytes);
-  }
-  uint32_t a = 1, b = 0;
-  for (unsigned char byte : raw) {
-    a = (a + byte) % 65521;
-    b = (b + a) % 65521;
-  }
-  uint16_t len = uint16_t(raw.size());
-  std::string z = {char(0x78), char(0x01), char(0x01), char(len & 0xFF), char(len >> 8), char(~len & 0xFF), char((~len >> 8) & 0xFF)};
-  z += raw + be32((b << 16) | a);
-  std::string ihdr = be32(uint32_t(width)) + be32(uint32_t(height)) + std::string{char(bit_depth), char(color_type), 0, 0, 0};
-  std::ofstream(path, std::ios::binary) << "\x89PNG\r\n\x1a\n" + chunk("IHDR", ihdr) + chunk("IDAT", z) + chunk("IEND", "");
-  return path;
-}
 
 // A material whose baseColorTexture is the image `uri`.
 GltfBuilder textured_triangle(const std::string& uri) {
@@ -154,10 +122,10 @@ TEST(GltfLoader, UnsupportedRequiredExtensionIsAnError) {
   fs::path dir = test::temp_dir();
   GltfBuilder b;
   b.scene({b.node({{"mesh", b.triangle_mesh()}})});
-  b.doc["extensionsUsed"] = {"KHR_draco_mesh_compression"};
-  b.doc["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+  b.doc["extensionsUsed"] = {"EXT_meshopt_compression"};
+  b.doc["extensionsRequired"] = {"EXT_meshopt_compression"};
   fs::path p = b.write(dir, "scene");
-  expect_one_line_naming(load_error(p), p, "requires unsupported extension KHR_draco_mesh_compression");
+  expect_one_line_naming(load_error(p), p, "requires unsupported extension EXT_meshopt_compression");
 }
 
 TEST(GltfLoader, AcceptedRequiredExtensionLoads) {
@@ -517,16 +485,74 @@ TEST(GltfLoader, TexCoordSelectsTheUvSetAndAMissingSetIsAnError) {
   EXPECT_TRUE(has_warning(mixed, "different UV sets or transforms"));
 }
 
-TEST(GltfLoader, AlphaNormalAndOcclusionAreIgnoredWithWarnings) {
+TEST(GltfLoader, AlphaModesNormalMapsAndOcclusion) {
   fs::path dir = test::temp_dir();
   write_png(dir / "tex.png", 1, 1, 8, 2, {1, 2, 3});
   GltfBuilder b = textured_triangle("tex.png");
+  b.doc["materials"][0]["pbrMetallicRoughness"]["baseColorFactor"] = {1, 1, 1, 0.25};
+  b.doc["materials"][0]["alphaMode"] = "MASK";
+  b.doc["materials"][0]["alphaCutoff"] = 0.125;
+  b.doc["materials"][0]["normalTexture"] = {{"index", 0}, {"scale", 0.5}};
+  b.doc["materials"][0]["occlusionTexture"] = {{"index", 0}};
+  Scene s = load_gltf(b.write(dir, "mask").string());
+  const Material& m = s.materials[0];
+  EXPECT_EQ(m.alpha_mode, AlphaMode::Mask);
+  EXPECT_FLOAT_EQ(m.alpha, 0.25f);
+  EXPECT_FLOAT_EQ(m.alpha_cutoff, 0.125f);
+  EXPECT_EQ(m.normal_texture, 1);  // the same image as the base colour, read linear: a texture of its own
+  EXPECT_EQ(s.textures.size(), 2u);
+  EXPECT_FLOAT_EQ(m.normal_scale, 0.5f);
+  EXPECT_TRUE(has_warning(s, "occlusion textures are ignored"));
+  EXPECT_EQ(s.gltf_features, (std::vector<std::string>{"alphaMode MASK", "normalTexture"}));
+
   b.doc["materials"][0]["alphaMode"] = "BLEND";
-  b.doc["materials"][0]["normalTexture"] = {{"index", 0}};
-  Scene s = load_gltf(b.write(dir, "scene").string());
-  EXPECT_TRUE(has_warning(s, "alpha modes other than OPAQUE are ignored"));
-  EXPECT_TRUE(has_warning(s, "normal and occlusion textures are ignored"));
-  EXPECT_EQ(s.textures.size(), 1u);  // the normal map is not decoded
+  Scene blend = load_gltf(b.write(dir, "blend").string());
+  EXPECT_EQ(blend.materials[0].alpha_mode, AlphaMode::Blend);
+  EXPECT_FLOAT_EQ(material_alpha_cutoff(blend.materials[0]), 0.5f);
+
+  b.doc["materials"][0]["alphaMode"] = "CUTOUT";
+  fs::path bad = b.write(dir, "bad");
+  expect_one_line_naming(load_error(bad), bad, "has alphaMode 'CUTOUT' (must be OPAQUE, MASK or BLEND)");
+  b.doc["materials"][0]["alphaMode"] = "MASK";
+  b.doc["materials"][0]["alphaCutoff"] = -1;
+  fs::path negative = b.write(dir, "negative");
+  expect_one_line_naming(load_error(negative), negative, "has alphaCutoff");
+}
+
+TEST(GltfLoader, VertexColorsAndTangentsAreLoadedAndTransformed) {
+  fs::path dir = test::temp_dir();
+  GltfBuilder b;
+  const std::vector<uint8_t> rgba = {255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 255, 0};  // normalized bytes
+  const int colors = b.accessor(b.view(rgba), kByte, 3, "VEC4", 0, true);
+  const std::vector<float> tangents = {1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, -1};
+  const int tan = b.accessor(b.view(tangents), kFloat, 3, "VEC4");
+  json prim = {{"attributes",
+                {{"POSITION", b.vec3s({0, 0, 0, 1, 0, 0, 0, 1, 0})},
+                 {"NORMAL", b.vec3s({0, 0, 1, 0, 0, 1, 0, 0, 1})},
+                 {"COLOR_0", colors},
+                 {"TANGENT", tan}}}};
+  const int with = b.mesh(prim);
+  const int plain = b.triangle_mesh();
+  // The first node mirrors x: the tangent turns to -x, and w flips with the winding.
+  b.scene({b.node({{"mesh", with}, {"scale", {-2, 1, 1}}}), b.node({{"mesh", plain}, {"translation", {0, 0, 5}}})});
+  Scene s = load_gltf(b.write(dir, "colors").string());
+  ASSERT_EQ(s.positions.size(), 6u);
+  ASSERT_EQ(s.colors.size(), 6u);
+  ASSERT_EQ(s.tangents.size(), 6u);
+  // Vertex order follows the (mirrored, so swapped) triangle's first use: find vertices by position.
+  for (size_t i = 0; i < 3; ++i) {
+    const vec3 p = s.positions[i];
+    const int k = p.x < -0.5f ? 1 : p.y > 0.5f ? 2 : 0;
+    const vec4 want = vec4(rgba[4 * k], rgba[4 * k + 1], rgba[4 * k + 2], rgba[4 * k + 3]) / 255.0f;
+    EXPECT_EQ(s.colors[i], want) << i;
+    EXPECT_EQ(vec3(s.tangents[i]), vec3(-1, 0, 0)) << i;
+    EXPECT_EQ(s.tangents[i].w, tangents[4 * k + 3] < 0 ? 1.0f : -1.0f) << i;
+  }
+  for (size_t i = 3; i < 6; ++i) {
+    EXPECT_EQ(s.colors[i], vec4(1.0f)) << "a primitive without COLOR_0 is white";
+    EXPECT_EQ(s.tangents[i], vec4(0.0f)) << "a primitive without TANGENT derives it";
+  }
+  EXPECT_EQ(s.gltf_features, (std::vector<std::string>{"COLOR_0", "TANGENT"}));
 }
 
 // ---- lights and cameras ----

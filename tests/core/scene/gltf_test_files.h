@@ -100,6 +100,41 @@ class GltfBuilder {
   }
 };
 
+// A PNG with uncompressed (stored) deflate blocks: enough for tiny test images without zlib.
+// `pixels` are the raw samples, row by row, 16-bit ones big-endian as PNG stores them.
+inline fs::path write_png(const fs::path& path, int width, int height, int bit_depth, int color_type,
+                   const std::vector<uint8_t>& pixels) {
+  auto crc32 = [](const std::string& data) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (unsigned char byte : data) {
+      c ^= byte;
+      for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  auto be32 = [](uint32_t v) { return std::string{char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; };
+  auto chunk = [&](const std::string& type, const std::string& data) {
+    return be32(uint32_t(data.size())) + type + data + be32(crc32(type + data));
+  };
+  size_t row_bytes = pixels.size() / size_t(height);
+  std::string raw;
+  for (int y = 0; y < height; ++y) {
+    raw.push_back('\0');  // filter: none
+    raw.append(reinterpret_cast<const char*>(pixels.data()) + y * row_bytes, row_bytes);
+  }
+  uint32_t a = 1, b = 0;
+  for (unsigned char byte : raw) {
+    a = (a + byte) % 65521;
+    b = (b + a) % 65521;
+  }
+  uint16_t len = uint16_t(raw.size());
+  std::string z = {char(0x78), char(0x01), char(0x01), char(len & 0xFF), char(len >> 8), char(~len & 0xFF), char((~len >> 8) & 0xFF)};
+  z += raw + be32((b << 16) | a);
+  std::string ihdr = be32(uint32_t(width)) + be32(uint32_t(height)) + std::string{char(bit_depth), char(color_type), 0, 0, 0};
+  std::ofstream(path, std::ios::binary) << "\x89PNG\r\n\x1a\n" + chunk("IHDR", ihdr) + chunk("IDAT", z) + chunk("IEND", "");
+  return path;
+}
+
 // The message of the sst::Error that loading `path` throws ("" when it loads).
 inline std::string load_error(const fs::path& path) {
   try {

@@ -1,0 +1,69 @@
+// What a triangle's vertices give a point of it at barycentrics b, in the common subset of C++ and
+// GLSL (core/math/cpu_gpu.h): interpolated positions, uvs and COLOR_0, textures, and the
+// material's alpha with the alpha test that every ray query applies (core/accel/bvh_traverse.h's
+// BVH_ALPHA_TEST, Embree's filter functions in core/accel/embree_accel.cpp) and that shading
+// builds on (core/shading/surface_eval.h). The scene is read through the SCENE_* hooks that
+// core/shading/surface_eval.h lists (core/scene/scene_access.h on the CPU,
+// gpu/shaders/surface.glsl on the GPU), defined before this file is included.
+#ifndef SST_CORE_SCENE_TRIANGLE_ATTRIBUTES_H
+#define SST_CORE_SCENE_TRIANGLE_ATTRIBUTES_H
+#include "core/math/vector_math.h"
+#include "core/scene/scene_layout.h"
+
+SST_BEGIN
+
+// (1 - b.x - b.y) * a + b.x * b1 + b.y * b2: a point of the triangle (a, b1, b2) at barycentrics b.
+SST_FUNC vec3 barycentric_mix3(vec3 a, vec3 b1, vec3 b2, vec2 b) {
+  SST_PRECISE float b0 = 1.0f - b.x - b.y;
+  SST_PRECISE vec3 r = b0 * a + b.x * b1 + b.y * b2;
+  return r;
+}
+
+SST_FUNC vec2 barycentric_mix2(vec2 a, vec2 b1, vec2 b2, vec2 b) {
+  SST_PRECISE float b0 = 1.0f - b.x - b.y;
+  SST_PRECISE vec2 r = b0 * a + b.x * b1 + b.y * b2;
+  return r;
+}
+
+SST_FUNC vec2 triangle_uv(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, vec2 b) {
+  return barycentric_mix2(SCENE_UV(t.v0), SCENE_UV(t.v1), SCENE_UV(t.v2), b);
+}
+
+SST_FUNC vec4 texture_or_one(SCENE_CTX_PARAM int texture, vec2 uv) {
+  return texture >= 0 ? SCENE_TEXTURE_SAMPLE(texture, uv) : vec4(1.0f);
+}
+
+// COLOR_0 at b. Equal corners (every scene without vertex colours) give that colour exactly, so
+// that multiplying by it changes no bit.
+SST_FUNC vec4 triangle_color(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, vec2 b) {
+  vec4 c0 = SCENE_COLOR(t.v0);
+  vec4 c1 = SCENE_COLOR(t.v1);
+  vec4 c2 = SCENE_COLOR(t.v2);
+  if (c0 == c1 && c1 == c2) return c0;
+  SST_PRECISE float b0 = 1.0f - b.x - b.y;
+  SST_PRECISE vec4 r = b0 * c0 + b.x * c1 + b.y * c2;
+  return r;
+}
+
+// Material m's alpha on triangle t at b: the factor times the base-colour texture's alpha times
+// COLOR_0's.
+SST_FUNC float surface_alpha(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(SceneMaterial) m, vec2 b) {
+  SST_PRECISE float a = m.alpha * triangle_color(SCENE_CTX t, b).w;
+  if (m.base_color_texture >= 0) {
+    SST_PRECISE float texel_alpha = SCENE_TEXTURE_SAMPLE(m.base_color_texture, triangle_uv(SCENE_CTX t, b)).w;
+    a = a * texel_alpha;
+  }
+  return a;
+}
+
+// Whether a hit on triangle tri at barycentrics b counts: the alpha test of glTF's MASK (and of
+// BLEND, rendered as a cutout at 0.5) that every ray query applies, and that cuts emitters too.
+SST_FUNC bool triangle_alpha_passes(SCENE_CTX_PARAM uint tri, vec2 b) {
+  SceneTriangle t = SCENE_TRIANGLE(tri);
+  SceneMaterial m = SCENE_MATERIAL(t.material);
+  return m.alpha_cutoff <= 0.0f || surface_alpha(SCENE_CTX t, m, b) >= m.alpha_cutoff;
+}
+
+SST_END
+
+#endif  // SST_CORE_SCENE_TRIANGLE_ATTRIBUTES_H

@@ -81,8 +81,9 @@ void EmbreeAccel::build_embree(const Scene& scene) {
 }
 
 float scene_ray_epsilon(const Scene& scene) {
-  float diagonal = scene.bounds.diagonal();
-  return 1e-5f * (diagonal > 0.0f && std::isfinite(diagonal) ? diagonal : 1.0f);
+  if (scene.positions.empty()) return 0.0f;
+  const float m = max_component(glm::max(glm::abs(scene.bounds.lo), glm::abs(scene.bounds.hi)));
+  return std::isfinite(m) ? 4.0f * kGamma7 * m : 0.0f;
 }
 
 EmbreeAccel::~EmbreeAccel() {

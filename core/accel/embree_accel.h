@@ -2,8 +2,8 @@
 // `flat` (RenderOptions::accel = "flat"), with the flat BVH the Vulkan backend traverses
 // (core/accel/flat_bvh.h): the same traversal code, so the CPU and GPU images can be compared bit
 // for bit, without Embree's different barycentrics and edge decisions.
-// Offsets that keep secondary rays off their own surface are relative to the scene size
-// (`scene_epsilon()`, ray_offset.h), never absolute, so millimetre and kilometre scenes behave the same.
+// Offsets that keep secondary rays off their own surface are bounds of the floating-point error of
+// the points they start from (core/accel/ray_offset.h), never lengths taken from the scene's size.
 #pragma once
 #include <embree3/rtcore.h>
 
@@ -31,9 +31,10 @@ struct Hit {
   bool valid() const { return triangle != UINT32_MAX; }
 };
 
-// The scene-relative part of every ray offset: 1e-5 of the scene diagonal (1e-5 for an empty or
-// degenerate scene), far below any feature the scenes model, far above float noise. The Vulkan
-// backend's offsets (core/accel/ray_offset.h) use the same value.
+// The ray offset of a point known only by its coordinates (ray_offset.h): gamma(7) times twice the
+// largest coordinate magnitude M of the scene's bounds, along each axis of a unit normal (at most
+// sqrt(3) of them): 4 gamma(7) M, at least the triangle_point_offset of any point of any of the
+// scene's triangles. The Vulkan backend uses the same value.
 float scene_ray_epsilon(const Scene& scene);
 
 struct FlatBvh;
@@ -54,13 +55,14 @@ class EmbreeAccel {
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
 
-  // The scene-relative part of every ray offset (scene_ray_epsilon).
+  // The ray offset of a point known only by its coordinates (scene_ray_epsilon).
   float scene_epsilon() const { return epsilon_; }
-  // The shadow ray between surface point p (geometric normal ng_p, on the side of y) and y
-  // (shadow_ray_segment, ray_offset.h; ng_y = 0 for a point light).
+  // The shadow ray between point p (geometric normal ng_p, on the side of y) and y
+  // (shadow_ray_segment, ray_offset.h; ng_y = 0 for a point light), both known only by their
+  // coordinates (VPLs, substitute lights, shading points of the VPL methods).
   Ray shadow_ray(vec3 p, vec3 ng_p, vec3 y, vec3 ng_y) const {
     Ray ray;
-    shadow_ray_segment(epsilon_, p, ng_p, y, ng_y, ray.origin, ray.direction, ray.tmax);
+    shadow_ray_segment(epsilon_, p, ng_p, epsilon_, y, ng_y, ray.origin, ray.direction, ray.tmax);
     ray.tmin = 0.0f;
     return ray;
   }

@@ -638,7 +638,7 @@ SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CT
       dir = ls.wi;
       tmax = kInf;
     } else {
-      shadow_ray_segment(GF.scene_epsilon, r.x2, r.n2, ls.point, ls.normal, origin, dir, tmax);
+      shadow_ray_segment(GF.scene_epsilon, r.x2, r.n2, ls.offset, ls.point, ls.normal, origin, dir, tmax);
     }
     GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_SHADOW_RAYS), 1u);
     if (!RAY_OCCLUDED(origin, dir, tmax)) {

@@ -52,6 +52,7 @@ struct LightSample {
   bool delta SST_DEFAULT(false);  // point, spot, directional: cannot be hit by BSDF sampling
   vec3 point SST_DEFAULT(vec3(0.0f));  // the sampled point (point/spot position; unused for directional)
   vec3 normal SST_DEFAULT(vec3(0.0f));  // geometric normal at the point (0 for punctual lights)
+  float offset SST_DEFAULT(0.0f);       // how far a shadow ray's end is lifted along normal (ray_offset.h)
 };
 
 // The start of a light path: where it leaves a light, which way, and the flux it carries.
@@ -195,6 +196,7 @@ SST_FUNC float spot_attenuation(SST_IN(LightPunctual) light, vec3 light_to_point
 SST_FUNC bool light_sample_punctual(vec3 p, SST_IN(LightPunctual) light, float pick, SST_INOUT(LightSample) s) {
   s.delta = true;
   s.pdf = pick;
+  s.offset = 0.0f;  // a point light has no surface to leave; a directional one no end
   if (light.type == LIGHT_DIRECTIONAL) {
     s.wi = -light.direction;
     s.distance = kInf;
@@ -241,6 +243,7 @@ SST_FUNC bool light_sample_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint
   s.li = triangle_emission(SCENE_CTX tri, b, cos_light > 0.0f);
   s.point = y;
   s.normal = ng;
+  s.offset = triangle_point_offset(v0, v1, v2, y, ng);
   SST_PRECISE float area_pdf = pick / e.area * d2 / abs(cos_light);
   SST_PRECISE float sphere_pdf = pick * solid_angle_pdf;
   s.pdf = spherical ? sphere_pdf : area_pdf;
@@ -258,6 +261,7 @@ SST_FUNC LightSample light_sample_none() {
   s.delta = false;
   s.point = vec3(0.0f);
   s.normal = vec3(0.0f);
+  s.offset = 0.0f;
   return s;
 }
 

@@ -14,6 +14,7 @@ ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_on
   ShadingPoint sp;
   sp.p = s.p;
   sp.ng = s.ng;
+  sp.offset = s.offset;
   sp.basis = basis_from_normal(s.ns);
   sp.wo = to_local(sp.basis, -glm::normalize(ray_direction));
   sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);

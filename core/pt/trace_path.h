@@ -10,7 +10,8 @@
 //                                 triangle BVH_INVALID_TRIANGLE for a miss, BVH_STACK_OVERFLOW
 //                                 where a traversal gave up (counted as a miss)
 //   RAY_OCCLUDED(origin, dir, tmax)  bool: anything on origin + t dir, t in [0, tmax)
-//   RAY_EPSILON                   the scene-relative ray offset (core/accel/ray_offset.h)
+//   RAY_EPSILON                   the ray offset of a point known only by its coordinates
+//                                 (scene_ray_epsilon, core/accel/ray_offset.h)
 // The CPU binds them to EmbreeAccel (core/accel/embree_accel.h), the GPU to the flat BVH
 // (gpu/shaders/path_trace.glsl).
 #ifndef SST_CORE_PT_TRACE_PATH_H
@@ -52,11 +53,11 @@ SST_FUNC PathCounters path_counters() {
   return c;
 }
 
-// Light sample ls seen from p (geometric normal ng) through the BRDF, with one shadow ray:
-// weighted by the power heuristic against BRDF sampling when `mis`, else the only estimate of
-// that light's contribution.
-SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, SST_IN(Brdf) brdf, SST_IN(Basis) basis, vec3 wo,
-                                 SST_IN(LightSample) ls, bool mis, SST_INOUT(PathCounters) counters) {
+// Light sample ls seen from p (geometric normal ng, ray lift `offset`) through the BRDF, with one
+// shadow ray: weighted by the power heuristic against BRDF sampling when `mis`, else the only
+// estimate of that light's contribution.
+SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, float offset, SST_IN(Brdf) brdf, SST_IN(Basis) basis,
+                                 vec3 wo, SST_IN(LightSample) ls, bool mis, SST_INOUT(PathCounters) counters) {
   // Light from behind the geometric surface would leak through it: nothing is transmitted.
   if (dot3(ls.wi, ng) <= 0.0f) return vec3(0.0f);
   vec3 wi = to_local(basis, ls.wi);
@@ -66,11 +67,11 @@ SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, SST_IN(Brdf) brd
   vec3 dir;
   float tmax;
   if (isinf(ls.distance)) {
-    origin = offset_ray_origin(RAY_EPSILON, p, ng);
+    origin = offset_ray_origin(offset, p, ng);
     dir = ls.wi;
     tmax = kInf;
   } else {
-    shadow_ray_segment(RAY_EPSILON, p, ng, ls.point, ls.normal, origin, dir, tmax);
+    shadow_ray_segment(offset, p, ng, ls.offset, ls.point, ls.normal, origin, dir, tmax);
   }
   counters.shadow_rays += 1u;
   if (RAY_OCCLUDED(origin, dir, tmax)) return vec3(0.0f);
@@ -84,7 +85,7 @@ SST_FUNC vec3 sample_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN
                             SST_IN(Basis) basis, vec3 wo, vec2 u, SST_INOUT(PathCounters) counters) {
   LightSample ls;
   if (!light_sample(SCENE_CTX LIGHT_CTX s.p, s.ns, u, ls)) return vec3(0.0f);
-  return shade_light_sample(RAY_CTX s.p, s.ng, brdf, basis, wo, ls, true, counters);
+  return shade_light_sample(RAY_CTX s.p, s.ng, s.offset, brdf, basis, wo, ls, true, counters);
 }
 
 // a * b, never contracted into the addition it feeds. A helper rather than precise variables in
@@ -110,6 +111,7 @@ SST_FUNC Surface surface_none() {
   s.metallic = 0.0f;
   s.roughness = 1.0f;
   s.emission = vec3(0.0f);
+  s.offset = 0.0f;
   return s;
 }
 
@@ -163,7 +165,7 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
     vec3 wi = to_world(basis, bs.wi);
     if (dot3(wi, s.ng) <= 0.0f) break;  // would pass through the surface
 
-    origin = offset_ray_origin(RAY_EPSILON, s.p, s.ng);
+    origin = offset_ray_origin(s.offset, s.p, s.ng);
     dir = wi;
     counters.bounce_rays += 1u;
     BvhHit next = RAY_INTERSECT(origin, dir);

@@ -24,6 +24,7 @@
 // the same floats up to the GPU's sqrt and division.
 #ifndef SST_CORE_SHADING_SURFACE_EVAL_H
 #define SST_CORE_SHADING_SURFACE_EVAL_H
+#include "core/accel/ray_offset.h"
 #include "core/math/vector_math.h"
 #include "core/scene/scene_layout.h"
 #include "core/scene/triangle_attributes.h"
@@ -49,6 +50,7 @@ struct Surface {
   float metallic SST_DEFAULT(0.0f);
   float roughness SST_DEFAULT(1.0f);
   vec3 emission SST_DEFAULT(vec3(0.0f));  // radiance leaving toward the viewer (0 from the back of one-sided)
+  float offset SST_DEFAULT(0.0f);  // how far rays leaving p are lifted along ng (core/accel/ray_offset.h)
 };
 
 // The unit shading normal n bent by material m's tangent-space normal map at uv. The tangent is
@@ -142,6 +144,7 @@ SST_FUNC Surface make_surface(SCENE_CTX_PARAM uint tri, vec2 b, vec3 incoming) {
   s.triangle = tri;
   s.material = t.material;
   s.ng = triangle_geometric_normal(SCENE_CTX tri);
+  s.offset = triangle_point_offset(v0, v1, v2, s.p, s.ng);
   s.front_face = dot3(s.ng, incoming) < 0.0f;
   if (!s.front_face) s.ng = -s.ng;
   s.uv = triangle_uv(SCENE_CTX t, b);

@@ -81,7 +81,7 @@ SST_FUNC uvec2 trace_light_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM VP
     if (!(dot3(wi, s.ng) > 0.0f)) break;  // would pass through the surface
     SST_PRECISE vec3 reflected = beta * albedo;
     beta = reflected;
-    origin = offset_ray_origin(RAY_EPSILON, s.p, s.ng);
+    origin = offset_ray_origin(s.offset, s.p, s.ng);
     dir = wi;
   }
   return uvec2(deposits, rays);

@@ -25,7 +25,7 @@ Vpl ml_vpl(uint j) {
 bool ml_occluded(vec3 x, vec3 ng, vec3 p, vec3 n) {
   vec3 origin, dir;
   float tmax;
-  shadow_ray_segment(SCENE_RAY_EPSILON, x, ng, p, n, origin, dir, tmax);
+  shadow_ray_segment(SCENE_RAY_EPSILON, x, ng, SCENE_RAY_EPSILON, p, n, origin, dir, tmax);
   return bvh_occluded(origin, dir, 0.0, tmax) != BVH_VISIBLE;
 }
 

@@ -63,6 +63,7 @@ void main() {
   ShadingPoint sp;
   sp.p = q.p;
   sp.ng = q.ng;
+  sp.offset = SCENE_RAY_EPSILON;
   sp.basis.t = q.t;
   sp.basis.b = q.b;
   sp.basis.n = q.n;

@@ -49,6 +49,7 @@ ShadingPoint shading_point(Surface s, vec3 dir, uvec2 xy) {
   ShadingPoint sp;
   sp.p = s.p;
   sp.ng = s.ng;
+  sp.offset = s.offset;
   sp.basis = basis_from_normal(s.ns);
   sp.wo = to_local(sp.basis, -normalize3(dir));
   sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, push.diffuse_only != 0u);

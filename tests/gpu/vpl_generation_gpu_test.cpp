@@ -178,14 +178,27 @@ Comparison compare_with_cpu(const Backends& b, const VplParams& p, uint32_t seed
   return c;
 }
 
+// Per hit, for the hits that carry at least 1% of the intensity, and in total. The last hits of
+// long paths hold few VPLs, whose sum one path that took another course (Embree and the flat
+// BVH decide grazing rays at edges differently) moves by tens of percent: on the Breakfast Room
+// the 8th hit carries 0.03% of the intensity and differs by 28% between the backends, as it does
+// between the CPU's own Embree and flat BVH (0.0240 against 0.0172, seed 5).
 void expect_intensity_sums_near(const VplStats& gpu, const VplStats& cpu, double relative) {
   ASSERT_EQ(gpu.intensity_per_bounce.size(), cpu.intensity_per_bounce.size());
-  for (size_t k = 0; k < cpu.intensity_per_bounce.size(); ++k)
-    for (int ch = 0; ch < 3; ++ch) {
+  for (int ch = 0; ch < 3; ++ch) {
+    double total_cpu = 0.0, total_gpu = 0.0;
+    for (size_t k = 0; k < cpu.intensity_per_bounce.size(); ++k) {
+      total_cpu += cpu.intensity_per_bounce[k][ch];
+      total_gpu += gpu.intensity_per_bounce[k][ch];
+    }
+    EXPECT_NEAR(total_gpu, total_cpu, relative * std::abs(total_cpu)) << "all hits, channel " << ch;
+    for (size_t k = 0; k < cpu.intensity_per_bounce.size(); ++k) {
       double expected = cpu.intensity_per_bounce[k][ch];
+      if (std::abs(expected) < 0.01 * std::abs(total_cpu)) continue;
       EXPECT_NEAR(gpu.intensity_per_bounce[k][ch], expected, relative * std::abs(expected))
           << "hit " << k << " channel " << ch;
     }
+  }
 }
 
 // Every VPL equal to float tolerance, the statistics equal (paths_traced and rays depend on the

@@ -372,7 +372,7 @@ void check_against_embree(const Scene& scene, const FlatBvh& bvh, int ray_count,
 void check_occlusion(const Scene& scene, const FlatBvh& bvh, int ray_count, const char* name) {
   EmbreeAccel accel(scene);
   Rng rng(777u);
-  int checked = 0, occluded = 0, mismatches = 0;
+  int checked = 0, occluded = 0, mismatches = 0, embree_leaks = 0;
   auto check = [&](const Ray& r) {
     const Hit closest = accel.intersect(Ray{r.origin, r.direction, r.tmin, kInf});
     // The interval's end at a surface is ambiguous to float precision: skip those.
@@ -381,6 +381,16 @@ void check_occlusion(const Scene& scene, const FlatBvh& bvh, int ray_count, cons
     const bool e = accel.occluded(r);
     const bool f = flat_bvh_occluded(bvh, r.origin, r.direction, r.tmin, r.tmax);
     occluded += e;
+    // Embree is not watertight: a ray through an edge shared by two triangles may pass between
+    // them, where the flat BVH's watertight test hits one (counted, as compare_ray counts them).
+    if (f && !e) {
+      const FlatHit h = flat_bvh_intersect(bvh, r.origin, r.direction, r.tmin, r.tmax);
+      const float edge = std::min(std::min(h.barycentric.x, h.barycentric.y), 1.0f - h.barycentric.x - h.barycentric.y);
+      if (h.valid() && edge < 1e-3f) {
+        ++embree_leaks;
+        return;
+      }
+    }
     if (e != f && ++mismatches <= 5)
       ADD_FAILURE() << "occlusion differs (embree " << e << ", flat " << f << "): origin (" << r.origin.x << ", "
                     << r.origin.y << ", " << r.origin.z << ") dir (" << r.direction.x << ", " << r.direction.y << ", "
@@ -411,8 +421,10 @@ void check_occlusion(const Scene& scene, const FlatBvh& bvh, int ray_count, cons
     check(accel.shadow_ray(p, np, y, ny));
   }
   EXPECT_EQ(mismatches, 0);
+  EXPECT_LE(embree_leaks, checked / 10000 + 1);
   EXPECT_GT(occluded, checked / 20);
-  std::printf("[%s] occlusion rays: %d checked, %d occluded, %d mismatches\n", name, checked, occluded, mismatches);
+  std::printf("[%s] occlusion rays: %d checked, %d occluded, %d mismatches, %d Embree leaks at edges\n", name, checked,
+              occluded, mismatches, embree_leaks);
 }
 
 TEST(FlatBvh, CornellBoxInvariants) {

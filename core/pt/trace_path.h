@@ -159,6 +159,10 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
     vec3 direct = product_exact(beta, sample_direct(SCENE_CTX LIGHT_CTX RAY_CTX s, brdf, basis, wo, u_light, counters));
     if (k == 1) result.direct += direct;
     else result.indirect += direct;
+    // The last vertex's bounce ray only looks for emission (the MIS half of its direct light): in a
+    // scene where no triangle emits (LightHeader.emissive_count) it would find none. It cost the
+    // many-light methods' direct pass (max_bounces 0) a third of its rays.
+    if (k == max_bounces + 1 && LIGHT_HEADER.emissive_count == 0u) break;
 
     BrdfSample bs;
     if (!brdf_sample(brdf, wo, u_brdf, bs)) break;

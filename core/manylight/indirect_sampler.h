@@ -26,11 +26,6 @@ using LightTreeBuildFn = std::function<LightTree(const VplSet& vpls, const Light
                                                  const Bounds3* scene_bounds, LightTreeBuildStats* stats,
                                                  std::string* built_on)>;
 
-// The first hit `s` of a camera ray along `ray_direction` through pixel (x, y), ready to shade
-// (many_light_method.cpp; gpu/shaders/many_light.comp builds the same on the GPU).
-struct Surface;
-ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_only, int x, int y);
-
 // What a frame is lit by, for a sampler to prepare from: the VPLs, their clamp, and the render
 // context (scene, camera, options) they light.
 struct VplLighting {

@@ -3,25 +3,13 @@
 #include <atomic>
 #include <mutex>
 
+#include "core/manylight/shading_point.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/pixel_loop.h"
 #include "core/vpl/vpl_clamp.h"
 #include "core/vpl/vpl_ply.h"
 
 namespace sst {
-
-ShadingPoint shading_point(const Surface& s, vec3 ray_direction, bool diffuse_only, int x, int y) {
-  ShadingPoint sp;
-  sp.p = s.p;
-  sp.ng = s.ng;
-  sp.offset = s.offset;
-  sp.basis = basis_from_normal(s.ns);
-  sp.wo = to_local(sp.basis, -glm::normalize(ray_direction));
-  sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
-  sp.x = x;
-  sp.y = y;
-  return sp;
-}
 
 namespace {
 

@@ -41,22 +41,9 @@ layout(push_constant) uniform Push { ManyLightPush push; };
 #include "gpu/shaders/path_trace.glsl"
 #include "gpu/shaders/indirect_sampler.glsl"
 #include "core/manylight/rtslc/rtslc_direct.h"
+#include "core/manylight/shading_point.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
-
-// many_light_method.cpp's shading_point: the first hit seen along `dir`.
-ShadingPoint shading_point(Surface s, vec3 dir, uvec2 xy) {
-  ShadingPoint sp;
-  sp.p = s.p;
-  sp.ng = s.ng;
-  sp.offset = s.offset;
-  sp.basis = basis_from_normal(s.ns);
-  sp.wo = to_local(sp.basis, -normalize3(dir));
-  sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, push.diffuse_only != 0u);
-  sp.x = int(xy.x);
-  sp.y = int(xy.y);
-  return sp;
-}
 
 ManyLightTexel empty_texel() {
   ManyLightTexel t;
@@ -97,7 +84,7 @@ void main() {
     bool own_direct = ml_params.rtslc_direct_cut_max_size != 0u;
     PathSample d = trace_path(push.view.eye, dir, own_direct ? -1 : 0, 0, push.diffuse_only != 0u, ps, counters, hit,
                               has_hit);
-    if (own_direct && d.depth > 0.0) d.direct += estimate_rtslc_direct(shading_point(hit, dir, xy), ps, counters);
+    if (own_direct && d.depth > 0.0) d.direct += estimate_rtslc_direct(shading_point(hit, dir, push.diffuse_only != 0u, int(xy.x), int(xy.y)), ps, counters);
     // Every slice retraces the camera ray (the same bits each time); the first one counts it.
     if (first_slice) {
       acc.primary_rays += counters.primary_rays;
@@ -107,7 +94,7 @@ void main() {
     }
     vec3 value = vec3(0.0);
     if (d.depth > 0.0) {
-      ShadingPoint sp = shading_point(hit, dir, xy);
+      ShadingPoint sp = shading_point(hit, dir, push.diffuse_only != 0u, int(xy.x), int(xy.y));
       IndirectEstimate e;
       if (first_slice && last_slice) {
         e = estimate_indirect(sp, ps);

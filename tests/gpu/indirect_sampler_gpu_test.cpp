@@ -18,6 +18,7 @@
 
 #include "core/accel/flat_bvh.h"
 #include "core/manylight/many_light_method.h"
+#include "core/manylight/shading_point.h"
 #include "core/manylight/sampler_inputs.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pt/path_tracer.h"

@@ -107,7 +107,7 @@ SST_FUNC vec2 emitter_child_weights(LIGHT_CTX_PARAM uint parent, vec3 p, vec3 n)
   vec2 w;
   if (LIGHT_HEADER.sampler_kind == LIGHT_SAMPLER_SLC) {
     w = slc_pair_weights(a.lo, a.hi, a.intensity, !(a.intensity > 0.0f), b.lo, b.hi, b.intensity,
-                         !(b.intensity > 0.0f), p, n);
+                         !(b.intensity > 0.0f), p, basis_from_normal(n));
   } else {
     w = vec2(emitter_importance(a, p, n), emitter_importance(b, p, n));
   }

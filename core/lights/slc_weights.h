@@ -14,7 +14,7 @@ SST_BEGIN
 // (w_0, w_1) at shading position x with shading normal n for boxes [lo_k, hi_k] of luminance
 // lum_k; an empty box (no light below it) weighs 0 and never makes x "near".
 SST_FUNC vec2 slc_pair_weights(vec3 lo0, vec3 hi0, float lum0, bool empty0, vec3 lo1, vec3 hi1, float lum1,
-                               bool empty1, vec3 x, vec3 n) {
+                               bool empty1, vec3 x, SST_IN(Basis) frame) {
   float base[2];
   float d2[2];
   bool near = false;
@@ -22,7 +22,7 @@ SST_FUNC vec2 slc_pair_weights(vec3 lo0, vec3 hi0, float lum0, bool empty0, vec3
     vec3 lo = k == 0 ? lo0 : lo1;
     vec3 hi = k == 0 ? hi0 : hi1;
     bool empty = k == 0 ? empty0 : empty1;
-    SST_PRECISE float b = (k == 0 ? lum0 : lum1) * box_cos_bound(lo, hi, x, n);
+    SST_PRECISE float b = (k == 0 ? lum0 : lum1) * box_cos_bound_in_frame(lo, hi, x, frame);
     base[k] = empty ? 0.0f : b;
     d2[k] = empty ? 0.0f : box_distance2_min(lo, hi, x);
     float diag = box_diagonal(lo, hi);

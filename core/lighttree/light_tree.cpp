@@ -50,10 +50,11 @@ void validate(const LightTreeParams& params) {
 
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
                LightTreeBuildStats& stats) {
-  timed(stats.keys_ms, [&] { compute_sort_keys(vpls, vpl_bounds, scratch.keys, scratch.ids); });
+  timed(stats.keys_ms, [&] { compute_sort_keys(vpls, vpl_bounds, scratch.keys); });
   // The id bits are already ascending in input order and the sort is stable: sorting only the
-  // Morton and normal bits gives the full keys' order, with 5 passes instead of 8.
-  timed(stats.sort_ms, [&] { radix_sort_pairs(scratch.keys, scratch.ids, scratch.sort, kIdBits, 64); });
+  // Morton and normal bits gives the full keys' order, with 5 passes instead of 8. The keys carry
+  // their VPL (sort_key_vpl), so no index array travels with them.
+  timed(stats.sort_ms, [&] { radix_sort_keys(scratch.keys, scratch.sort, kIdBits, 64); });
 }
 
 LightTreeBuilder::LightTreeBuilder() : scratch_(std::make_unique<Scratch>()) {}

@@ -7,6 +7,7 @@
 
 #include <bit>
 
+#include "core/lighttree/sort_key.h"
 #include "core/lighttree/tree_builders.h"
 
 namespace sst {
@@ -19,12 +20,13 @@ constexpr size_t kPrefetch = 16;
 // stream it through memory once per level.
 constexpr uint32_t kSubtreeLeaves = 2048;
 
-void fill_leaves(const VplSet& vpls, const uint32_t* ids, size_t n, uint32_t begin, uint32_t end,
+void fill_leaves(const VplSet& vpls, const uint64_t* keys, size_t n, uint32_t begin, uint32_t end,
                  const SubstituteThresholds& thresholds, LightNode* leaves) {
   for (size_t i = begin; i != end; ++i) {
     // The VPLs are gathered in key order, i.e. from scattered addresses: fetch ahead.
-    if (i + kPrefetch < n) __builtin_prefetch(&vpls[ids[i + kPrefetch]]);
-    leaves[i] = i < n ? make_leaf(vpls[ids[i]], ids[i], thresholds) : make_padding_leaf(thresholds);
+    if (i + kPrefetch < n) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
+    leaves[i] = i < n ? make_leaf(vpls[sort_key_vpl(keys[i])], sort_key_vpl(keys[i]), thresholds)
+                      : make_padding_leaf(thresholds);
   }
 }
 
@@ -37,7 +39,7 @@ void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thres
 
 void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds,
                         const LightTreeBuilder::Scratch& scratch, LightTree& tree) {
-  const size_t n = scratch.ids.size();
+  const size_t n = scratch.keys.size();
   if (n == 0) {
     tree.nodes.clear();
     tree.root = kNoNode;
@@ -55,7 +57,7 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
   // nodes of one level are consecutive: [(leaves + k sub) / 2^l, + sub / 2^l)) ...
   const uint32_t sub = std::min(leaves, kSubtreeLeaves), subtrees = leaves / sub;
   tbb::parallel_for(uint32_t(0), subtrees, [&](uint32_t k) {
-    fill_leaves(vpls, scratch.ids.data(), n, k * sub, (k + 1) * sub, thresholds, nodes + leaves);
+    fill_leaves(vpls, scratch.keys.data(), n, k * sub, (k + 1) * sub, thresholds, nodes + leaves);
     for (uint32_t first = (leaves + k * sub) / 2, width = sub / 2; width >= 1; first /= 2, width /= 2)
       merge_range(first, first + width, thresholds, nodes);
   });

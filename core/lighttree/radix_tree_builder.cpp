@@ -13,6 +13,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "core/lighttree/sort_key.h"
 #include "core/lighttree/tree_builders.h"
 
 #define RADIX_TREE_KEYS_PARAM const uint64_t* keys,
@@ -36,29 +37,25 @@ void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree) 
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
   scratch.parents.resize(tree.nodes.size());
-  scratch.ranges.resize(2 * (n == 0 ? 0 : n - 1));
+  scratch.topology.resize(n == 0 ? 0 : n - 1);
   if (n == 0) return;
   scratch.parents[0] = kNoNode;
   const uint64_t* keys = scratch.keys.data();
-  LightNode* nodes = tree.nodes.data();
   uint32_t* parents = scratch.parents.data();
-  uint32_t* ranges = scratch.ranges.data();
+  LightTreeBuilder::Scratch::Topology* topology = scratch.topology.data();
   tbb::parallel_for(tbb::blocked_range<int>(0, int(n) - 1, kGrain), [&](const tbb::blocked_range<int>& r) {
     for (int i = r.begin(); i != r.end(); ++i) {
       RadixTreeNode node = radix_tree_node(keys, int(n), i);
-      nodes[i].left = node.left;
-      nodes[i].right = node.right;
+      topology[i] = {node.left, node.right, node.first, node.last};
       parents[node.left] = uint32_t(i);
       parents[node.right] = uint32_t(i);
-      ranges[2 * i] = node.first;
-      ranges[2 * i + 1] = node.last;
     }
   });
 }
 
 void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
                       LightTree& tree) {
-  const size_t n = scratch.ids.size();
+  const size_t n = scratch.keys.size();
   if (n == 0) return;
   const size_t internal = n - 1;
   if (scratch.visits_size < internal) {
@@ -71,8 +68,8 @@ void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   });
   LightNode* nodes = tree.nodes.data();
   const uint32_t* parents = scratch.parents.data();
-  const uint32_t* ranges = scratch.ranges.data();
-  const uint32_t* ids = scratch.ids.data();
+  const LightTreeBuilder::Scratch::Topology* topology = scratch.topology.data();
+  const uint64_t* keys = scratch.keys.data();
   const uint32_t first_leaf = tree.first_leaf;
   // Chunks of at most kMergeChunk leaves: a chunk's leaves and internal nodes (2 x 96 bytes a
   // leaf) then stay in the core's cache between the leaf loop and the climbs.
@@ -81,12 +78,14 @@ void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
     // Leaves first, as a loop of independent iterations: the VPLs are gathered in key order,
     // from scattered addresses, and the climbs below would stall on each of those loads.
     for (uint32_t i = chunk_begin; i != chunk_end; ++i) {
-      if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[ids[i + kPrefetch]]);
-      nodes[first_leaf + i] = make_leaf(vpls[ids[i]], ids[i], thresholds);
+      if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
+      const uint32_t vpl = sort_key_vpl(keys[i]);
+      nodes[first_leaf + i] = make_leaf(vpls[vpl], vpl, thresholds);
     }
     for (uint32_t i = chunk_begin; i != chunk_end; ++i) {
       for (uint32_t parent = parents[first_leaf + i]; parent != kNoNode; parent = parents[parent]) {
-        uint32_t lo = ranges[2 * parent], hi = ranges[2 * parent + 1];
+        const LightTreeBuilder::Scratch::Topology& t = topology[parent];
+        const uint32_t lo = t.first, hi = t.last;
         if (lo >= chunk_begin && hi < chunk_end) {
           if (hi != i) break;  // inside the chunk: complete once its last leaf is done
         } else if (visits[parent].fetch_add(1, std::memory_order_acq_rel) == 0) {
@@ -94,8 +93,7 @@ void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
           // visible to the second, and this subtree to whoever arrives second above.
           break;
         }
-        const uint32_t left = nodes[parent].left, right = nodes[parent].right;
-        nodes[parent] = merge_children(nodes[left], left, nodes[right], right, thresholds);
+        nodes[parent] = merge_children(nodes[t.left], t.left, nodes[t.right], t.right, thresholds);
       }
     }
   }, tbb::simple_partitioner());

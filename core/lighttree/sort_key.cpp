@@ -82,16 +82,13 @@ void check_sort_key_capacity(size_t vpl_count) {
                 std::to_string(kMaxSortKeyVpls) + " (25 id bits)");
 }
 
-void compute_sort_keys(const VplSet& vpls, const Bounds3& vpl_bounds, std::vector<uint64_t>& keys,
-                       std::vector<uint32_t>& ids) {
+void compute_sort_keys(const VplSet& vpls, const Bounds3& vpl_bounds, std::vector<uint64_t>& keys) {
   check_sort_key_capacity(vpls.size());
   keys.resize(vpls.size());
-  ids.resize(vpls.size());
   MortonGrid grid = MortonGrid::over(vpl_bounds);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, vpls.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       keys[i] = sort_key_from_words(vpl_sort_key(vpls[i].position, vpls[i].normal, uint32_t(i), grid.origin, grid.scale));
-      ids[i] = uint32_t(i);
     }
   });
 }

@@ -106,6 +106,9 @@ inline uint64_t sort_key_from_words(uvec2 key) { return (uint64_t(key.y) << 32) 
 // The unit direction at the centre (centroid of the triangle cell) of code `code` < 512.
 vec3 decode_normal(uint32_t code);
 
+// The VPL index a key carries in its low kIdBits bits.
+inline uint32_t sort_key_vpl(uint64_t key) { return uint32_t(key) & uint32_t(kMaxSortKeyVpls - 1); }
+
 inline uint64_t make_sort_key(uint32_t morton, uint32_t normal_code, uint32_t id) {
   return sort_key_from_words(sort_key_words(morton, normal_code, id));
 }
@@ -118,10 +121,9 @@ Bounds3 compute_vpl_bounds(const VplSet& vpls);
 // Throws sst::Error if `vpl_count` VPLs cannot get unique keys (more than kMaxSortKeyVpls).
 void check_sort_key_capacity(size_t vpl_count);
 
-// keys[i] = key of vpls[i] over the grid of `vpl_bounds`; ids[i] = i (the payload the sort
-// carries along). Parallel. Throws sst::Error if vpls.size() > kMaxSortKeyVpls.
-void compute_sort_keys(const VplSet& vpls, const Bounds3& vpl_bounds, std::vector<uint64_t>& keys,
-                       std::vector<uint32_t>& ids);
+// keys[i] = key of vpls[i] over the grid of `vpl_bounds`, its id bits i (sort_key_vpl).
+// Parallel. Throws sst::Error if vpls.size() > kMaxSortKeyVpls.
+void compute_sort_keys(const VplSet& vpls, const Bounds3& vpl_bounds, std::vector<uint64_t>& keys);
 
 }  // namespace sst
 #endif

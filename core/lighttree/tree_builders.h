@@ -13,17 +13,20 @@
 namespace sst {
 
 struct LightTreeBuilder::Scratch {
-  std::vector<uint64_t> keys;
-  std::vector<uint32_t> ids;  // after sorting: VPL index of each sorted position
+  std::vector<uint64_t> keys;  // after sorting: ascending; sort_key_vpl(keys[i]) is the VPL at position i
   RadixSortScratch sort;
-  std::vector<uint32_t> parents;                  // radix: parent of every node
-  std::vector<uint32_t> ranges;                   // radix: first and last leaf of internal node i at 2i, 2i+1
+  std::vector<uint32_t> parents;  // radix: parent of every node
+  // radix: internal node i's children and the sorted positions [first, last] of its leaves, kept
+  // apart from the tree's nodes so that those are written once, by the merge.
+  struct Topology {
+    uint32_t left, right, first, last;
+  };
+  std::vector<Topology> topology;
   std::unique_ptr<std::atomic<uint32_t>[]> visits;  // radix: arrivals per internal node
   size_t visits_size = 0;
 };
 
-// Keys of `vpls` over `vpl_bounds`, sorted: afterwards scratch.keys is ascending and
-// scratch.ids[i] is the VPL at sorted position i. Times the two stages into `stats`.
+// Keys of `vpls` over `vpl_bounds`, sorted into scratch.keys. Times the two stages into `stats`.
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
                LightTreeBuildStats& stats);
 

@@ -9,9 +9,11 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
   LightTreeBuildStats stats;
   const Bounds3& scene_bounds = lighting.context.scene.bounds;
   std::string built_on = "cpu";
-  tree_ = timer.time("tree_build", [&] {
-    return builder_ ? builder_(lighting.vpls, tree_params_, &scene_bounds, &stats, &built_on)
-                    : build_light_tree(lighting.vpls, tree_params_, &scene_bounds, &stats);
+  timer.time("tree_build", [&] {
+    if (builder_)
+      tree_ = builder_(lighting.vpls, tree_params_, &scene_bounds, &stats, &built_on);
+    else
+      cpu_builder_.build(lighting.vpls, tree_params_, &scene_bounds, tree_, &stats);
   });
   counters["tree"] = {{"kind", tree_.kind},
                       {"built_on", built_on},

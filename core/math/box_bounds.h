@@ -37,24 +37,41 @@ SST_FUNC float box_min_abs(float lo, float hi) { return lo <= 0.0f && hi >= 0.0f
 // - box_cos_bound_linear: min(1, max_y n.(y - x) / dmin), the exact maximum of a linear function
 //   over the box over a lower bound of |y - x|. Cheap, tight for far boxes; used by rtslc's
 //   weights and the cuts.
-SST_FUNC float box_cos_bound(vec3 lo, vec3 hi, vec3 x, vec3 n) {
+// The range over the box's corners c of dot3(c - x, a), given dl = lo - x and dh = hi - x. A
+// corner's dot3 is a sum of one product per axis, added in dot3's order, and rounding is monotone,
+// so the extremes are the sums of the per-axis extremes: the 8 corners' values, to the bit.
+SST_FUNC vec2 box_corner_dot_range(vec3 dl, vec3 dh, vec3 a) {
+  SST_PRECISE vec3 pl = dl * a;
+  SST_PRECISE vec3 ph = dh * a;
+  vec3 mn = min(pl, ph);
+  vec3 mx = max(pl, ph);
+  SST_PRECISE float lo = mn.x + mn.y + mn.z;
+  SST_PRECISE float hi = mx.x + mx.y + mx.z;
+  return vec2(lo, hi);
+}
+
+// box_cos_bound with n's basis `frame` = basis_from_normal(n) given: a walk takes it from its
+// shading point instead of building it at every node.
+SST_FUNC float box_cos_bound_in_frame(vec3 lo, vec3 hi, vec3 x, SST_IN(Basis) frame) {
   if (box_empty(lo, hi)) return 0.0f;
   if (box_inside(lo, hi, x)) return 1.0f;
-  Basis f = basis_from_normal(n);
-  vec3 llo = vec3(kInf);
-  vec3 lhi = vec3(-kInf);
-  for (int c = 0; c < 8; ++c) {
-    vec3 corner = vec3((c & 1) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y, (c & 4) != 0 ? hi.z : lo.z);
-    SST_PRECISE vec3 d = corner - x;
-    vec3 l = to_local(f, d);
-    llo = min(llo, l);
-    lhi = max(lhi, l);
-  }
+  SST_PRECISE vec3 dl = lo - x;
+  SST_PRECISE vec3 dh = hi - x;
+  vec2 rx = box_corner_dot_range(dl, dh, frame.t);
+  vec2 ry = box_corner_dot_range(dl, dh, frame.b);
+  vec2 rz = box_corner_dot_range(dl, dh, frame.n);
+  // The box of the corners in the frame: (llo, lhi).
+  vec3 llo = vec3(rx.x, ry.x, rz.x);
+  vec3 lhi = vec3(rx.y, ry.y, rz.y);
   if (!(lhi.z > 0.0f)) return 0.0f;  // wholly below the tangent plane
   float dx = box_min_abs(llo.x, lhi.x);
   float dy = box_min_abs(llo.y, lhi.y);
   SST_PRECISE float len2 = dx * dx + dy * dy + lhi.z * lhi.z;
   return len2 > 0.0f ? min(1.0f, lhi.z / sqrt(len2)) : 1.0f;
+}
+
+SST_FUNC float box_cos_bound(vec3 lo, vec3 hi, vec3 x, vec3 n) {
+  return box_cos_bound_in_frame(lo, hi, x, basis_from_normal(n));
 }
 
 SST_FUNC float box_cos_bound_linear(vec3 lo, vec3 hi, vec3 x, vec3 n) {

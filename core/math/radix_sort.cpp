@@ -58,6 +58,8 @@ bool exclusive_offsets(uint32_t* counts, size_t n, size_t block_count) {
   return true;
 }
 
+// kWithValues = false: `values` and `values_out` are not touched (may be null).
+template <bool kWithValues>
 void scatter(const uint64_t* keys, const uint32_t* values, size_t n, const Blocks& blocks, int shift,
              uint32_t mask, uint32_t* offsets, uint64_t* keys_out, uint32_t* values_out) {
   tbb::parallel_for(size_t(0), blocks.count, [&](size_t b) {
@@ -65,9 +67,41 @@ void scatter(const uint64_t* keys, const uint32_t* values, size_t n, const Block
     for (size_t i = blocks.begin(b), e = blocks.end(b, n); i < e; ++i) {
       uint32_t slot = offset[radix_digit(keys[i], uint32_t(shift), mask)]++;
       keys_out[slot] = keys[i];
-      values_out[slot] = values[i];
+      if constexpr (kWithValues) values_out[slot] = values[i];
     }
   });
+}
+
+void check_bit_range(int begin_bit, int end_bit) {
+  if (begin_bit < 0 || end_bit > 64 || begin_bit > end_bit)
+    throw Error("radix_sort: bit range [" + std::to_string(begin_bit) + ", " + std::to_string(end_bit) +
+                ") is not within [0, 64]");
+}
+
+// The passes of both entry points; values == nullptr sorts the keys alone.
+void sort_passes(std::vector<uint64_t>& keys, std::vector<uint32_t>* values, RadixSortScratch& scratch, int begin_bit,
+                 int end_bit) {
+  if (keys.size() > UINT32_MAX) throw Error("radix_sort: more than 2^32-1 keys");
+  const size_t n = keys.size();
+  if (n < 2) return;
+  Blocks blocks = split(n);
+  scratch.keys.resize(n);
+  if (values) scratch.values.resize(n);
+  scratch.counts.resize(blocks.count * kBuckets);
+  for (int shift = begin_bit; shift < end_bit; shift += kDigitBits) {
+    int bits = std::min(kDigitBits, end_bit - shift);
+    uint32_t mask = (1u << bits) - 1u;
+    histogram(keys.data(), n, blocks, shift, mask, scratch.counts.data());
+    if (!exclusive_offsets(scratch.counts.data(), n, blocks.count)) continue;
+    if (values)
+      scatter<true>(keys.data(), values->data(), n, blocks, shift, mask, scratch.counts.data(), scratch.keys.data(),
+                    scratch.values.data());
+    else
+      scatter<false>(keys.data(), nullptr, n, blocks, shift, mask, scratch.counts.data(), scratch.keys.data(), nullptr);
+    // The sorted pass now lives in the scratch buffers: swap (O(1)) so `keys` holds it.
+    keys.swap(scratch.keys);
+    if (values) values->swap(scratch.values);
+  }
 }
 
 }  // namespace
@@ -77,27 +111,13 @@ void radix_sort_pairs(std::vector<uint64_t>& keys, std::vector<uint32_t>& values
   if (keys.size() != values.size())
     throw Error("radix_sort_pairs: keys (" + std::to_string(keys.size()) + ") and values (" +
                 std::to_string(values.size()) + ") differ in size");
-  if (begin_bit < 0 || end_bit > 64 || begin_bit > end_bit)
-    throw Error("radix_sort_pairs: bit range [" + std::to_string(begin_bit) + ", " + std::to_string(end_bit) +
-                ") is not within [0, 64]");
-  if (keys.size() > UINT32_MAX) throw Error("radix_sort_pairs: more than 2^32-1 pairs");
-  const size_t n = keys.size();
-  if (n < 2) return;
-  Blocks blocks = split(n);
-  scratch.keys.resize(n);
-  scratch.values.resize(n);
-  scratch.counts.resize(blocks.count * kBuckets);
-  for (int shift = begin_bit; shift < end_bit; shift += kDigitBits) {
-    int bits = std::min(kDigitBits, end_bit - shift);
-    uint32_t mask = (1u << bits) - 1u;
-    histogram(keys.data(), n, blocks, shift, mask, scratch.counts.data());
-    if (!exclusive_offsets(scratch.counts.data(), n, blocks.count)) continue;
-    scatter(keys.data(), values.data(), n, blocks, shift, mask, scratch.counts.data(), scratch.keys.data(),
-            scratch.values.data());
-    // The sorted pass now lives in the scratch buffers: swap (O(1)) so `keys` holds it.
-    keys.swap(scratch.keys);
-    values.swap(scratch.values);
-  }
+  check_bit_range(begin_bit, end_bit);
+  sort_passes(keys, &values, scratch, begin_bit, end_bit);
+}
+
+void radix_sort_keys(std::vector<uint64_t>& keys, RadixSortScratch& scratch, int begin_bit, int end_bit) {
+  check_bit_range(begin_bit, end_bit);
+  sort_passes(keys, nullptr, scratch, begin_bit, end_bit);
 }
 
 void radix_sort_pairs(std::vector<uint64_t>& keys, std::vector<uint32_t>& values, int begin_bit, int end_bit) {

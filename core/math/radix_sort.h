@@ -24,5 +24,8 @@ void radix_sort_pairs(std::vector<uint64_t>& keys, std::vector<uint32_t>& values
                       int begin_bit = 0, int end_bit = 64);
 void radix_sort_pairs(std::vector<uint64_t>& keys, std::vector<uint32_t>& values, int begin_bit = 0,
                       int end_bit = 64);
+// The keys alone, for keys that carry their own payload (a sort key's VPL id): a third less
+// memory traffic per pass than radix_sort_pairs.
+void radix_sort_keys(std::vector<uint64_t>& keys, RadixSortScratch& scratch, int begin_bit = 0, int end_bit = 64);
 
 }  // namespace sst

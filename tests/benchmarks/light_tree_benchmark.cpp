@@ -89,7 +89,7 @@ void BM_SortKeys(benchmark::State& state) {
   for (auto _ : state)
     state.SetIterationTime(seconds([&] {
       sst::Bounds3 b = sst::compute_vpl_bounds(s.vpls);
-      sst::compute_sort_keys(s.vpls, b, s.scratch.keys, s.scratch.ids);
+      sst::compute_sort_keys(s.vpls, b, s.scratch.keys);
     }));
 }
 
@@ -97,14 +97,10 @@ void BM_RadixSort(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, thread_count());
   Stages s(vpls_for(size_t(state.range(0))));
   std::vector<uint64_t> keys;
-  std::vector<uint32_t> ids;
-  sst::compute_sort_keys(s.vpls, s.bounds, keys, ids);
+  sst::compute_sort_keys(s.vpls, s.bounds, keys);
   for (auto _ : state) {
     s.scratch.keys = keys;
-    s.scratch.ids = ids;
-    state.SetIterationTime(seconds([&] {
-      sst::radix_sort_pairs(s.scratch.keys, s.scratch.ids, s.scratch.sort, sst::kIdBits, 64);
-    }));
+    state.SetIterationTime(seconds([&] { sst::radix_sort_keys(s.scratch.keys, s.scratch.sort, sst::kIdBits, 64); }));
   }
 }
 

@@ -52,7 +52,7 @@ SST_FUNC float rtslc_child_probability(SST_IN(LightNode) c0, SST_IN(LightNode) c
 // walk takes c0 iff u < P_0.
 SST_FUNC vec2 rtslc_child_probabilities(SST_IN(LightNode) c0, SST_IN(LightNode) c1, vec3 x, vec3 n, uint weights) {
   if (weights == ML_RTSLC_WEIGHTS_SLC) {
-    vec2 w = slc_child_weights(c0, c1, x, n);
+    vec2 w = slc_child_weights(c0, c1, x, basis_from_normal(n));
     float sum = w.x + w.y;
     if (!(sum > 0.0f) || !is_finite(sum)) return vec2(0.0f);
     float p0 = w.x / sum;

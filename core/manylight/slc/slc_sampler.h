@@ -41,7 +41,7 @@ inline double probability_value(TreeProbability p) { return std::ldexp(double(p.
 // slc_child_weights (slc_estimate.h) at `point`.
 inline ChildWeights slc_weights(const ShadingPoint& point) {
   return [&point](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
-    vec2 w = slc_child_weights(l, r, point.p, point.basis.n);
+    vec2 w = slc_child_weights(l, r, point.p, point.basis);
     return {w.x, w.y};
   };
 }

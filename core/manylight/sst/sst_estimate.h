@@ -47,7 +47,7 @@ SST_FUNC vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 lo, vec3 hi) {
 
 // M: the lobe's BRDF bound times the cosine bound over the node's box (sp.brdf: the lobe's part).
 SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, bool glossy) {
-  float cos_bound = box_cos_bound(node.bounds_lo, node.bounds_hi, sp.p, sp.basis.n);
+  float cos_bound = box_cos_bound_in_frame(node.bounds_lo, node.bounds_hi, sp.p, sp.basis);
   if (!(cos_bound > 0.0f)) return 0.0f;
   if (!glossy) {
     SST_PRECISE float m = luminance(sp.brdf.diffuse) * kInvPi * cos_bound;

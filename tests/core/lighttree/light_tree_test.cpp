@@ -202,8 +202,7 @@ TEST(LightTreeRadix, SplitsEveryRangeAtItsHighestDifferingBit) {
   vpls.resize(6000, duplicate);  // equal Morton and normal bits: only the id tells them apart
   LightTree tree = build_light_tree(vpls, params_for("radix"));
   std::vector<uint64_t> keys;
-  std::vector<uint32_t> ids;
-  compute_sort_keys(vpls, compute_vpl_bounds(vpls), keys, ids);
+  compute_sort_keys(vpls, compute_vpl_bounds(vpls), keys);
   std::sort(keys.begin(), keys.end());
   // In-order leaves are the sorted keys' VPLs.
   std::vector<uint32_t> in_order = leaves_below(tree, tree.root);

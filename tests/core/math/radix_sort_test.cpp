@@ -94,6 +94,12 @@ TEST(RadixSort, BitRangeSkipsLowBitsThatAreAlreadyAscending) {
   radix_sort_pairs(got.keys, got.values, 25, 64);
   EXPECT_EQ(got.keys, expected.keys);
   EXPECT_EQ(got.values, expected.values);
+  // The keys alone come out the same: their low bits are the payload.
+  std::vector<uint64_t> keys_only = in.keys;
+  RadixSortScratch scratch;
+  radix_sort_keys(keys_only, scratch, 25, 64);
+  EXPECT_EQ(keys_only, expected.keys);
+  EXPECT_THROW(radix_sort_keys(keys_only, scratch, 0, 65), Error);
 }
 
 TEST(RadixSort, SameResultWithOneAndTwoThreads) {

@@ -109,7 +109,7 @@ TEST(RtslcTraversal, SlcWeightsLeafProbabilitiesSumToOneAndMatchFrequencies) {
     for (uint32_t from : {tree.root, 2u, 3u, 6u}) {
       std::vector<double> p = check_leaf_probabilities(tree, from, x, n, RtslcWeights::slc, 13);
       // The weights are Yuksel's (slc_child_weights): at the start node P_0 = w_0 / (w_0 + w_1).
-      vec2 w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, n);
+      vec2 w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, basis_from_normal(n));
       double left = 0.0;
       for (size_t l = 0; l < p.size() / 2; ++l) left += p[l];
       EXPECT_NEAR(left, double(w.x) / (double(w.x) + double(w.y)), 1e-5) << "from " << from;

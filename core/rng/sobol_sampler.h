@@ -30,13 +30,24 @@ SST_FUNC uint nested_uniform_scramble(uint x, uint seed) {
   return bitfieldReverse(laine_karras_permutation(bitfieldReverse(x), seed));
 }
 
-// The second Sobol dimension as a 32-bit fraction (the first is bitfieldReverse(index)).
-SST_FUNC uint sobol_dimension1(uint index) {
-  uint result = 0u;
-  for (uint v = 1u << 31u; index != 0u; index >>= 1u, v ^= v >> 1u)
-    if ((index & 1u) != 0u) result ^= v;
-  return result;
+// The second Sobol dimension as a 32-bit fraction (the first is bitfieldReverse(index)),
+// bit-reversed. Its generator matrix is Pascal's triangle mod 2: index bit k contributes
+// (1 + S)^k e_31, S a right shift; in reversed bit order that is the polynomial in S whose
+// coefficient of S^j sits at bit j, and the index itself is sum_k index_k S^k. So the map is the
+// substitution S -> 1 + S, and as (1 + S)^(2^m) = 1 + S^(2^m) mod 2, it is one masked shift-xor per
+// bit m of the exponents: every S^j with bit m set gains S^(j - 2^m). Equal to the bitwise loop
+// over the index (tests/core/rng), without its 32 data-dependent branches.
+SST_FUNC uint sobol_dimension1_reversed(uint index) {
+  uint x = index;
+  x ^= (x & 0xFFFF0000u) >> 16u;
+  x ^= (x & 0xFF00FF00u) >> 8u;
+  x ^= (x & 0xF0F0F0F0u) >> 4u;
+  x ^= (x & 0xCCCCCCCCu) >> 2u;
+  x ^= (x & 0xAAAAAAAAu) >> 1u;
+  return x;
 }
+
+SST_FUNC uint sobol_dimension1(uint index) { return bitfieldReverse(sobol_dimension1_reversed(index)); }
 
 struct PixelSampler {
   uint key;
@@ -71,7 +82,8 @@ SST_FUNC vec2 pixel_sampler_get2d(SST_INOUT(PixelSampler) s) {
   uint i = 0u;
   uint set_seed = pixel_sampler_next_set(s, i);
   uint x = pixel_sampler_x_bits(i, set_seed);
-  uint y = nested_uniform_scramble(sobol_dimension1(i), pcg_hash(set_seed ^ 0x63D83595u));
+  // nested_uniform_scramble(sobol_dimension1(i), ...) with its inner bitfieldReverse folded away.
+  uint y = bitfieldReverse(laine_karras_permutation(sobol_dimension1_reversed(i), pcg_hash(set_seed ^ 0x63D83595u)));
   return vec2(bits_to_unit_float(x), bits_to_unit_float(y));
 }
 

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
 #include <set>
 
 namespace sst {
@@ -50,6 +51,29 @@ TEST(SobolSampler, MeanOverManyPixelsIsUniform) {
     sum += pixel_sampler_get2d(s).y;
   }
   EXPECT_NEAR(sum / pixels, 0.5, 6.0 * std::sqrt(1.0 / 12.0 / pixels));
+}
+
+// The textbook generator: direction v_k = v_(k-1) ^ (v_(k-1) >> 1), v_0 = 2^31, xored in for each
+// set index bit k.
+uint sobol_dimension1_by_directions(uint index) {
+  uint result = 0u;
+  for (uint v = 1u << 31u; index != 0u; index >>= 1u, v ^= v >> 1u)
+    if ((index & 1u) != 0u) result ^= v;
+  return result;
+}
+
+TEST(SobolSampler, SecondDimensionEqualsTheDirectionNumbers) {
+  std::mt19937 rng(5);
+  uint64_t differing = 0;
+  for (uint i = 0; i < (1u << 16); ++i) {
+    uint r = uint(rng());
+    differing += sobol_dimension1(i) != sobol_dimension1_by_directions(i);
+    differing += sobol_dimension1(r) != sobol_dimension1_by_directions(r);
+  }
+  for (uint k = 0; k < 32; ++k) differing += sobol_dimension1(1u << k) != sobol_dimension1_by_directions(1u << k);
+  differing += sobol_dimension1(~0u) != sobol_dimension1_by_directions(~0u);
+  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(sobol_dimension1_reversed(12345u), bitfieldReverse(sobol_dimension1_by_directions(12345u)));
 }
 
 TEST(SobolSampler, RemapKeepsTheUnitInterval) {

@@ -81,7 +81,9 @@ class RtslcSampler final : public TreeSamplerBase {
  public:
   explicit RtslcSampler(const RtslcParams& params);
   const BlockCuts& cuts() const { return cuts_; }
-  IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
+  // flatten: every helper of the walk inlined whatever GCC's size budget says; without it, when
+  // the shared kernels grew, GCC left some of them calls per node (measured: sampling 8% slower).
+  [[gnu::flatten]] IndirectEstimate estimate(const ShadingPoint& point, PixelSampler& sampler) const override {
     return estimate_rtslc(inputs(), point, sampler);
   }
   vec3 estimate_direct(const RenderContext& ctx, const ShadingPoint& point, PixelSampler& sampler,

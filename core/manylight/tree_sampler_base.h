@@ -21,8 +21,8 @@ class TreeSamplerBase : public IndirectSampler {
   LightTree tree_;
 
  private:
-  LightTreeBuildFn builder_;         // empty: cpu_builder_
-  LightTreeBuilder cpu_builder_;     // kept, with tree_'s storage, so that a sequence's rebuilds allocate nothing
+  LightTreeBuildFn builder_;      // empty: cpu_builder_
+  LightTreeBuilder cpu_builder_;  // kept, with tree_'s storage, so that a sequence's rebuilds allocate nothing
 };
 
 }  // namespace sst

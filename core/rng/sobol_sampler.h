@@ -26,10 +26,6 @@ SST_FUNC uint laine_karras_permutation(uint x, uint seed) {
   return x;
 }
 
-SST_FUNC uint nested_uniform_scramble(uint x, uint seed) {
-  return bitfieldReverse(laine_karras_permutation(bitfieldReverse(x), seed));
-}
-
 // The second Sobol dimension as a 32-bit fraction (the first is bitfieldReverse(index)),
 // bit-reversed. Its generator matrix is Pascal's triangle mod 2: index bit k contributes
 // (1 + S)^k e_31, S a right shift; in reversed bit order that is the polynomial in S whose
@@ -63,8 +59,10 @@ SST_FUNC PixelSampler pixel_sampler(uint seed, uint pixel, uint sample_index) {
   return s;
 }
 
-// Equal to nested_uniform_scramble of the Sobol values of the scrambled index; written with
-// bitfieldReverse(bitfieldReverse(x)) = x folded away, since this runs a dozen times per path.
+// The nested uniform scramble of the Sobol values of the scrambled index, a value v scrambled as
+// bitfieldReverse(laine_karras_permutation(bitfieldReverse(v), seed)); both dimensions are at hand
+// bit-reversed (dimension 0 is the index reversed), so the inner bitfieldReverse cancels and is
+// not written. This runs a dozen times per path.
 SST_FUNC vec2 pixel_sampler_get2d(SST_INOUT(PixelSampler) s) {
   s.sets_used += 1u;
   uint set_seed = pcg_hash(s.key ^ pcg_hash(s.sets_used));

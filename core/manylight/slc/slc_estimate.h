@@ -10,8 +10,8 @@
 
 SST_BEGIN
 
-// (w_left, w_right) at shading position x with shading frame basis_from_normal(n) (rtslc's
-// `weights slc` too).
+// (w_left, w_right) at shading position x with shading frame `frame` (basis_from_normal of the
+// shading normal; rtslc's `weights slc` too).
 SST_FUNC vec2 slc_child_weights(SST_IN(LightNode) left, SST_IN(LightNode) right, vec3 x, SST_IN(Basis) frame) {
   SST_PRECISE float lum_left = luminance(left.intensity);
   SST_PRECISE float lum_right = luminance(right.intensity);

@@ -127,6 +127,9 @@ CLI::App* add_check_command(CLI::App& app, CheckArgs& a) {
   cmd->add_option("--inject-variance", a.distribution.inject_variance,
                   "fault for measuring power: noise of this x the baseline's per-pixel variance added to fresh colour")
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--same-seed-margin", a.distribution.same_seed_margin,
+                  "same-seed tests: relative change of a seed's render below which it counts as none")
+      ->capture_default_str()->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--inject-method", a.distribution.inject_method, "inject faults only into groups of this method [all]");
   add_scene_options(cmd, a.scene_dirs, a.cache_dir);
   cmd->add_flag("-q,--quiet", a.quiet, "no progress on stderr");
@@ -162,7 +165,9 @@ int run_check_command(const CheckArgs& a) {
     so.output_dir = (fs::path(a.baseline) / "statistics-runs").string();
     if (!a.resume) fs::remove_all(fs::path(so.output_dir) / "runs");
     nlohmann::json runs = run_sweep(many, so);
-    write_json_atomic(statistics_path.string(), make_distribution_baseline(runs, so.output_dir, a.baseline, a.distribution));
+    nlohmann::json statistics_json = make_distribution_baseline(runs, so.output_dir, a.baseline, a.distribution);
+    add_same_seed_records(statistics_json, fresh, o.output_dir, a.baseline);
+    write_json_atomic(statistics_path.string(), statistics_json);
     fs::remove_all(so.output_dir);
     std::printf("baseline updated: %s (%zu runs; statistics of %zu runs in %s); review with git diff %s\n",
                 a.baseline.c_str(), fresh["runs"].size(), runs["runs"].size(), statistics_path.string().c_str(),
@@ -191,7 +196,10 @@ int run_check_command(const CheckArgs& a) {
                               {"inject_bias", a.distribution.inject_bias},
                               {"inject_variance", a.distribution.inject_variance},
                               {"inject_method", a.distribution.inject_method},
+                              {"same_seed_margin", a.distribution.same_seed_margin},
                               {"groups", tests.groups}};
+    // The fresh runs as a baseline's same-seed records (scripts/check_power.py pairs with them).
+    write_json_atomic((fs::path(o.output_dir) / "same_seeds.json").string(), tests.same_seeds);
   }
   record["passed"] = passed;
   write_json_atomic((fs::path(o.output_dir) / "check.json").string(), record);

@@ -111,7 +111,9 @@ void split_flags(const nlohmann::json& given, sst::RenderOptions& options, nlohm
   method_params = nlohmann::json::object();
   for (const auto& [key, value] : given.items()) {
     if (std::find(common.begin(), common.end(), key) != common.end()) continue;
-    bool known = std::any_of(method.params.begin(), method.params.end(), [&](const auto& p) { return p.name == key; });
+    // An init-capture: clang 14 (the sanitizer build) cannot capture a structured binding.
+    bool known =
+        std::any_of(method.params.begin(), method.params.end(), [&k = key](const auto& p) { return p.name == k; });
     if (!known) throw sst::Error("--" + sst::to_flag(key) + " does not apply to method '" + options.method + "'");
     method_params[key] = value;
   }

@@ -1,15 +1,23 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer harnesses of tests/fuzz in build-fuzz/ (clang; ASan and UBSan over all of
-# sst) and runs each for SECONDS (default 60) on a scratch corpus seeded from tests/fuzz/corpus/<name>/
-# (the committed seeds are only read). A crash, sanitizer report, input over 10 s or heap over
-# 2 GB stops that harness, leaves the input in build-fuzz/findings/ and fails the script.
+# The sanitizer job: builds sst with ASan and UBSan (clang) in build-fuzz/, runs the unit tests
+# there, then the libFuzzer harnesses of tests/fuzz, each for SECONDS (default 60) on a scratch
+# corpus seeded from tests/fuzz/corpus/<name>/ (the committed seeds are only read). A sanitizer
+# report fails the unit tests; a crash, sanitizer report, input over 10 s or heap over 2 GB stops
+# that harness, leaves the input in build-fuzz/findings/ and fails the script.
+# Unit tests: those under UNIT_TEST_SECONDS (default 2) in the Release build's last ctest run
+# (build/Testing/Temporary/CTestCostData.txt: in CI, the run just before), so that the renders,
+# which ASan slows several times, stay in the Release run; all tests where there is no such run.
 # Usage: scripts/fuzz.sh [SECONDS] [HARNESS ...]   (harnesses: gltf texture config image)
-#        scripts/fuzz.sh --ci   (CI: a fixed number of inputs per harness from a fixed seed, so
-#                               that a run is repeatable; about half a minute each on 2 cores)
+#        scripts/fuzz.sh --ci   (CI: the unit tests, then a fixed number of inputs per harness
+#                               from a fixed seed, so that a run is repeatable; about half a
+#                               minute each on 2 cores)
+#        scripts/fuzz.sh --no-unit-tests ...   (only the harnesses)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 declare -A ci_runs=([gltf]=60000 [texture]=60000 [config]=60000 [image]=3000)
 ci=0
+unit_tests=1
+if [ "${1:-}" = "--no-unit-tests" ]; then unit_tests=0; shift; fi
 if [ "${1:-}" = "--ci" ]; then ci=1; shift; set -- 0 "$@"; fi
 seconds=${1:-60}
 shift || true
@@ -18,14 +26,36 @@ harnesses=("$@")
 launcher=()
 if command -v ccache > /dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache); fi
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
-  "${launcher[@]}" -DSST_FUZZ=ON -DSST_ENABLE_VULKAN=OFF -DSST_BUILD_TESTS=OFF -DSST_BUILD_BENCHMARKS=OFF > /dev/null
-cmake --build build-fuzz -j2 --target "${harnesses[@]/#/fuzz_}"
+  "${launcher[@]}" -DSST_FUZZ=ON -DSST_ENABLE_VULKAN=OFF -DSST_BUILD_TESTS=ON -DSST_BUILD_BENCHMARKS=OFF > /dev/null
+targets=("${harnesses[@]/#/fuzz_}")
+[ $unit_tests = 0 ] || targets+=(sst_tests)
+cmake --build build-fuzz -j2 --target "${targets[@]}"
 mkdir -p build-fuzz/findings
+export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
+status=0
+if [ $unit_tests = 1 ]; then
+  filter="*"
+  costs=build/Testing/Temporary/CTestCostData.txt
+  if [ -f $costs ]; then
+    limit=${UNIT_TEST_SECONDS:-2}
+    # ctest names a parameterized test by its value (Prefix/Suite.Test/"radix"), gtest by its index.
+    filter=$(awk -v limit="$limit" '$1 == "---" { exit }
+             NF >= 3 && $NF < limit && $1 != "metrics_check" { n = $1; if (gsub("/", "/", n) >= 2) sub("/[^/]*$", "/*", n); print n }' \
+             $costs | sort -u | paste -sd: -)
+  fi
+  count=$(build-fuzz/tests/sst_tests --gtest_list_tests --gtest_filter="$filter" | grep -c '^  ' || true)
+  echo "unit tests under ASan and UBSan: $count tests"
+  start=$(date +%s)
+  if ! build-fuzz/tests/sst_tests --gtest_filter="$filter" --gtest_brief=1 > build-fuzz/unit_tests.log 2>&1; then
+    echo "unit tests under sanitizers: FAILED (build-fuzz/unit_tests.log)"
+    tail -n 60 build-fuzz/unit_tests.log
+    status=1
+  fi
+  echo "unit tests under sanitizers: $(($(date +%s) - start)) s"
+fi
 # Every limit derived from the machine's memory is derived from 4 GiB instead, so that a run refuses
 # the same inputs on every machine (and repeats with --ci) and stays below libFuzzer's 2 GB heap limit.
 export SST_MEMORY_LIMIT_MB=4096
-export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
-status=0
 for h in "${harnesses[@]}"; do
   mkdir -p "build-fuzz/corpus/$h"
   if [ $ci = 1 ]; then

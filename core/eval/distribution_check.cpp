@@ -29,6 +29,7 @@ struct GroupRuns {
   std::string group;
   std::string method;
   std::vector<std::string> images;  // the EXR of each seed
+  std::vector<double> seeds;        // each run's params.seed (NaN where a run has none)
 };
 
 std::vector<GroupRuns> group_runs(const nlohmann::json& results, const std::string& dir) {
@@ -36,7 +37,7 @@ std::vector<GroupRuns> group_runs(const nlohmann::json& results, const std::stri
   for (const nlohmann::json& r : results.at("runs")) runs[r.value("id", "")] = &r;
   std::vector<GroupRuns> out;
   for (const nlohmann::json& g : results.at("groups")) {
-    GroupRuns group{g.value("group", ""), g.value("method", ""), {}};
+    GroupRuns group{g.value("group", ""), g.value("method", ""), {}, {}};
     for (const nlohmann::json& id : member(g, "runs")) {
       auto it = runs.find(id.is_string() ? id.get<std::string>() : "");
       if (it == runs.end()) throw Error("group '" + group.group + "' lists run " + id.dump() + ", which the results lack");
@@ -44,6 +45,7 @@ std::vector<GroupRuns> group_runs(const nlohmann::json& results, const std::stri
       if (!exr.is_string())
         throw Error("group '" + group.group + "': run " + id.dump() + " has no EXR image to take statistics of");
       group.images.push_back((fs::path(dir) / exr.get<std::string>()).string());
+      group.seeds.push_back(number(member(*it->second, "params"), "seed"));
     }
     out.push_back(std::move(group));
   }
@@ -54,9 +56,30 @@ std::vector<GroupRuns> group_runs(const nlohmann::json& results, const std::stri
 struct Reduction {
   std::vector<double> blocks;             // [block * 3 + channel]: the block's mean
   std::array<double, kChannels> image{};  // the whole image's mean
+  double log_noise = 0.0;                 // pixel_noise()
 };
 
 int blocks_across(int pixels, int block) { return (pixels + block - 1) / block; }
+
+// The log of the median over pixels and channels of the squared differences between horizontal
+// and vertical neighbours: the image's pixel-to-pixel noise. Unlike the error energy it ignores
+// what whole regions share (a VPL set's offset, a radiance cache's blotches), which varies from
+// seed to seed by far more than a 50% rise in pixel variance.
+double pixel_noise(const Image& im) {
+  std::vector<double> squares;
+  squares.reserve(im.pixel_count() * 2 * kChannels);
+  for (int y = 0; y < im.height; ++y)
+    for (int x = 0; x < im.width; ++x)
+      for (int c = 0; c < kChannels; ++c) {
+        const double v = im.at(x, y, c);
+        if (x + 1 < im.width) squares.push_back((im.at(x + 1, y, c) - v) * (im.at(x + 1, y, c) - v));
+        if (y + 1 < im.height) squares.push_back((im.at(x, y + 1, c) - v) * (im.at(x, y + 1, c) - v));
+      }
+  if (squares.empty()) return std::log(1e-300);
+  auto middle = squares.begin() + squares.size() / 2;
+  std::nth_element(squares.begin(), middle, squares.end());
+  return std::log(std::max(*middle, 1e-300));
+}
 
 Reduction reduce(const Image& im, int block) {
   const int bx = blocks_across(im.width, block), by = blocks_across(im.height, block);
@@ -75,6 +98,7 @@ Reduction reduce(const Image& im, int block) {
   for (size_t b = 0; b < counts.size(); ++b)
     for (int c = 0; c < kChannels; ++c) r.blocks[b * kChannels + c] /= counts[b];
   for (int c = 0; c < kChannels; ++c) r.image[c] /= double(im.pixel_count());
+  r.log_noise = pixel_noise(im);
   return r;
 }
 
@@ -201,6 +225,72 @@ bool all_finite(const Image& im) {
   return std::all_of(im.data.begin(), im.data.end(), [](float v) { return std::isfinite(v); });
 }
 
+// A seed's reduction and error energy as a record of a group's "same_seeds".
+nlohmann::json same_seed_record(double seed, const Reduction& r, double log_energy) {
+  return {{"seed", seed},
+          {"image", std::vector<double>(r.image.begin(), r.image.end())},
+          {"blocks", to_floats(r.blocks)},
+          {"log_energy", log_energy},
+          {"log_noise", r.log_noise}};
+}
+
+// A baseline record's values, checked against the group's sizes.
+struct SameSeedRecord {
+  double seed = NAN;
+  std::vector<double> image, blocks;
+  double log_energy = NAN, log_noise = NAN;
+};
+
+std::vector<SameSeedRecord> same_seed_records(const nlohmann::json& group, const std::string& name, size_t block_values) {
+  std::vector<SameSeedRecord> out;
+  for (const nlohmann::json& r : member(group, "same_seeds")) {
+    SameSeedRecord rec;
+    rec.seed = number(r, "seed");
+    rec.image = doubles(r, name, "image", kChannels);
+    rec.blocks = doubles(r, name, "blocks", block_values);
+    rec.log_energy = number(r, "log_energy");
+    rec.log_noise = number(r, "log_noise");
+    if (!std::isfinite(rec.seed) || !std::isfinite(rec.log_energy) || !std::isfinite(rec.log_noise))
+      throw Error("check statistics of group '" + name +
+                  "': a same-seed record needs a finite seed, log_energy and log_noise");
+    out.push_back(std::move(rec));
+  }
+  return out;
+}
+
+// The same-seed test of one value: are the fresh values' log ratios to the baseline's, seed by
+// seed, further from 0 than `margin` beyond their noise? A t-test of the mean ratio against the
+// margin (n - 1 degrees of freedom): with the same random numbers the ratios are nearly equal
+// over seeds, so a change of a few percent stands out even where the seed-to-seed spread is far
+// larger; where a change has made the random numbers differ, the ratios spread like the estimates
+// and the test is as valid, and weaker. The margin keeps float rounding (another CPU's Embree
+// kernels or libm) from counting as a change. `one_sided`: only a rise counts.
+struct MarginTest {
+  double change = 0.0;  // the mean log ratio
+  TTest t;
+};
+
+MarginTest margin_t(const std::vector<double>& log_ratios, double margin, bool one_sided) {
+  const MeanVariance m = mean_variance(log_ratios);
+  const double n = double(log_ratios.size());
+  MarginTest r;
+  r.change = m.mean;
+  const double excess = (one_sided ? m.mean : std::abs(m.mean)) - margin;
+  if (!std::isfinite(m.mean)) {
+    r.t = {NAN, 0.0};
+  } else if (excess > 0.0) {
+    const double se = std::sqrt(m.variance / n);
+    r.t.t = se > 0.0 ? excess / se : INFINITY;
+    const double upper = student_t_upper_p(r.t.t, n - 1.0);
+    r.t.p = one_sided ? upper : std::min(1.0, 2.0 * upper);
+  }
+  return r;
+}
+
+// A mean as it enters a log ratio: values at or below `floor` (a small fraction of the image's
+// mean) count as the floor, so that a block that turned black is a large finite change.
+double log_above(double v, double floor) { return std::log(std::max(v, floor)); }
+
 }  // namespace
 
 nlohmann::json make_distribution_baseline(const nlohmann::json& results, const std::string& results_dir,
@@ -245,6 +335,7 @@ nlohmann::json make_distribution_baseline(const nlohmann::json& results, const s
       image_mean[c] = m.mean, image_variance[c] = m.variance;
     }
     const MeanVariance e = mean_variance(energies);
+    const MeanVariance noise = over_seeds(reductions, [](const Reduction& r) { return r.log_noise; });
     std::string stem = file_stem(g.group);
     for (int k = 2; stems.count(stem); ++k) stem = file_stem(g.group) + "-" + std::to_string(k);
     stems.insert(stem);
@@ -260,10 +351,35 @@ nlohmann::json make_distribution_baseline(const nlohmann::json& results, const s
                              {"image_variance", image_variance},
                              {"log_energy_mean", e.mean},
                              {"log_energy_variance", e.variance},
+                             {"log_noise_mean", noise.mean},
+                             {"log_noise_variance", noise.variance},
                              {"block_mean", to_floats(block_mean)},
                              {"block_variance", to_floats(block_variance)}});
   }
   return out;
+}
+
+void add_same_seed_records(nlohmann::json& statistics, const nlohmann::json& results, const std::string& results_dir,
+                           const std::string& baseline_dir) {
+  const int block = whole_number(statistics, "block", 1, 4096);
+  std::map<std::string, GroupRuns> runs;
+  for (GroupRuns& g : group_runs(results, results_dir)) runs[g.group] = std::move(g);
+  for (nlohmann::json& b : statistics.at("groups")) {
+    const std::string name = b.value("group", "");
+    auto it = runs.find(name);
+    if (it == runs.end()) continue;
+    const Image base_mean = read_image((fs::path(baseline_dir) / b.value("images", "")).string());
+    nlohmann::json records = nlohmann::json::array();
+    for (size_t s = 0; s < it->second.images.size(); ++s) {
+      if (!std::isfinite(it->second.seeds[s])) continue;
+      const Image im = read_image(it->second.images[s]);
+      if (im.width != base_mean.width || im.height != base_mean.height || !all_finite(im))
+        throw Error("same-seed records of group '" + name + "': " + it->second.images[s] +
+                    " is not a finite image of the statistics' size");
+      records.push_back(same_seed_record(it->second.seeds[s], reduce(im, block), log_energy(im, base_mean, 1.0)));
+    }
+    b["same_seeds"] = records;
+  }
 }
 
 DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::string& fresh_dir,
@@ -279,12 +395,69 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
     std::string problem;  // why the group fails without a test ("" when tested)
     bool missing = false;
     int seeds_base = 0, seeds_fresh = 0;
-    TTest image, worst_block, energy, energy_lower;
+    TTest image, worst_block, energy, energy_lower, noise;
     int image_channel = 0;
     std::vector<double> block_p;
-    double energy_ratio = NAN;
+    double energy_ratio = NAN, noise_ratio = NAN;
+    // Same seeds (tested when at least 2 fresh seeds have a baseline record).
+    int same_n = 0;
+    MarginTest same_worst;      // the value with the smallest p
+    std::string same_worst_what;
+    std::vector<double> same_whole_p, same_block_p;
   };
   std::vector<Row> rows;
+  // Pairs each fresh seed with the baseline's record of that seed and tests the log ratios of the
+  // image means, the block means, the error energies and the pixel noise (margin_t).
+  auto same_seed_tests = [&p](Row& row, const GroupRuns& g, const std::vector<Reduction>& fresh,
+                              const std::vector<double>& energies, const std::vector<SameSeedRecord>& base, int blocks_x) {
+    std::vector<std::pair<const Reduction*, const SameSeedRecord*>> pairs;
+    std::vector<double> energy_ratios, noise_ratios;
+    for (size_t s = 0; s < fresh.size(); ++s)
+      for (const SameSeedRecord& r : base)
+        if (r.seed == g.seeds[s]) {
+          pairs.push_back({&fresh[s], &r});
+          energy_ratios.push_back(energies[s] - r.log_energy);
+          noise_ratios.push_back(fresh[s].log_noise - r.log_noise);
+          break;
+        }
+    row.same_n = int(pairs.size());
+    if (pairs.size() < 2) return;
+    const double margin = std::log1p(p.same_seed_margin);
+    auto consider = [&row](const MarginTest& m, const std::string& what) {
+      if (row.same_worst_what.empty() || m.t.p < row.same_worst.t.p) row.same_worst = m, row.same_worst_what = what;
+    };
+    std::array<double, kChannels> floor{};
+    for (int c = 0; c < kChannels; ++c) {
+      for (const auto& [f, b] : pairs) floor[c] += 1e-3 * b->image[c] / double(pairs.size());
+      floor[c] = std::max(floor[c], 1e-12);
+    }
+    auto log_ratios = [&](auto value, double fl) {
+      std::vector<double> d;
+      for (const auto& [f, b] : pairs) d.push_back(log_above(value(*f), fl) - log_above(value(*b), fl));
+      return d;
+    };
+    for (int c = 0; c < kChannels; ++c) {
+      const MarginTest m = margin_t(log_ratios([c](const auto& r) { return r.image[c]; }, floor[c]), margin, false);
+      row.same_whole_p.push_back(m.t.p);
+      consider(m, std::string("image ") + "RGB"[c]);
+    }
+    for (size_t k = 0; k < pairs[0].second->blocks.size(); ++k) {
+      const int c = int(k % kChannels);
+      double base_mean = 0.0;
+      for (const auto& [f, b] : pairs) base_mean += b->blocks[k] / double(pairs.size());
+      if (!(base_mean > floor[c])) continue;  // a black block has no ratio to test
+      const MarginTest m = margin_t(log_ratios([k](const auto& r) { return r.blocks[k]; }, floor[c]), margin, false);
+      row.same_block_p.push_back(m.t.p);
+      const int index = int(k / kChannels);
+      consider(m, "block (" + std::to_string(index % blocks_x) + "," + std::to_string(index / blocks_x) + ") " + "RGB"[c]);
+    }
+    const MarginTest e = margin_t(energy_ratios, margin, true);
+    row.same_whole_p.push_back(e.t.p);
+    consider(e, "error energy");
+    const MarginTest noise = margin_t(noise_ratios, margin, true);
+    row.same_whole_p.push_back(noise.t.p);
+    consider(noise, "pixel noise");
+  };
   for (const nlohmann::json& b : member(statistics, "groups")) {
     Row row;
     row.group = b.value("group", "");
@@ -333,6 +506,8 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
       if (injected) inject(im, g.images[s], base_variance, p, Hash64().add(row.group).value() + s);
       reductions.push_back(reduce(im, block));
       energies.push_back(log_energy(im, base_mean, 1.0));
+      if (std::isfinite(g.seeds[s]))
+        out.same_seeds[row.group].push_back(same_seed_record(g.seeds[s], reductions.back(), energies.back()));
     }
     if (!row.problem.empty()) {
       rows.push_back(row);
@@ -355,6 +530,18 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
     row.energy = pooled_t(e_base, n_base, e_fresh, n, true);
     row.energy_lower = {row.energy.t, student_t_upper_p(-row.energy.t, double(n_base + n - 2))};
     row.energy_ratio = std::exp(e_fresh.mean - e_base.mean);
+    // Baselines made before the pixel-noise statistics have none to test against.
+    const MeanVariance noise_base{number(b, "log_noise_mean"), number(b, "log_noise_variance")};
+    if (std::isfinite(noise_base.mean) && std::isfinite(noise_base.variance)) {
+      const MeanVariance noise_fresh = over_seeds(reductions, [](const Reduction& r) { return r.log_noise; });
+      row.noise = pooled_t(noise_base, n_base, noise_fresh, n, true);
+      row.noise_ratio = std::exp(noise_fresh.mean - noise_base.mean);
+      out.whole_image_tests += 1;
+    }
+    same_seed_tests(row, g, reductions, energies, same_seed_records(b, row.group, blocks * kChannels),
+                    blocks_across(w, block));
+    out.whole_image_tests += int(row.same_whole_p.size());
+    out.block_tests += int(row.same_block_p.size());
     rows.push_back(row);
   }
 
@@ -364,8 +551,9 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
   out.block_threshold = 0.5 * p.alpha / std::max(out.block_tests, 1);
   std::ostringstream t;
   t << "| group | seeds (baseline, fresh) | image mean: t (p) | blocks: largest abs t (p), failing | "
-       "error energy: fresh / baseline (p) | status |\n"
-    << "|---|---|---|---|---|---|\n";
+       "error energy: fresh / baseline (p) | pixel noise: fresh / baseline (p) | "
+       "same seeds: n, largest change, t (p), failing | status |\n"
+    << "|---|---|---|---|---|---|---|---|\n";
   for (const Row& row : rows) {
     nlohmann::json g = {{"group", row.group}, {"method", row.method}, {"seeds_baseline", row.seeds_base},
                         {"seeds_fresh", row.seeds_fresh}};
@@ -373,22 +561,37 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
       g["status"] = row.missing ? "missing" : "fails";
       g["problem"] = row.problem;
       out.groups.push_back(g);
-      t << "| " << row.group << " | " << row.seeds_base << ", " << row.seeds_fresh << " | - | - | - | FAILS: "
+      t << "| " << row.group << " | " << row.seeds_base << ", " << row.seeds_fresh << " | - | - | - | - | - | FAILS: "
         << row.problem << " |\n";
       ++out.failures;
       continue;
     }
     const int failing_blocks = int(std::count_if(row.block_p.begin(), row.block_p.end(),
                                                  [&](double q) { return !(q >= out.block_threshold); }));
+    auto below = [](const std::vector<double>& ps, double threshold) {
+      return int(std::count_if(ps.begin(), ps.end(), [&](double q) { return !(q >= threshold); }));
+    };
+    const int same_failing =
+        below(row.same_whole_p, out.whole_image_threshold) + below(row.same_block_p, out.block_threshold);
     const bool fails = !(row.image.p >= out.whole_image_threshold) || failing_blocks > 0 ||
-                       !(row.energy.p >= out.whole_image_threshold);
+                       !(row.energy.p >= out.whole_image_threshold) || !(row.noise.p >= out.whole_image_threshold) ||
+                       same_failing > 0;
     const bool better = !fails && row.energy_lower.p < out.whole_image_threshold;
     const char channel = "RGB"[row.image_channel];
     t << "| " << row.group << " | " << row.seeds_base << ", " << row.seeds_fresh << " | " << channel
       << " " << fmt("%+.2f", row.image.t) << " (" << fmt("%.2g", row.image.p) << ") | "
       << fmt("%.2f", std::abs(row.worst_block.t)) << " (" << fmt("%.2g", row.worst_block.p) << "), " << failing_blocks
-      << " | " << fmt("%.3f", row.energy_ratio) << " (" << fmt("%.2g", row.energy.p) << ") | "
-      << (fails ? "FAILS" : better ? "better" : "ok") << " |\n";
+      << " | " << fmt("%.3f", row.energy_ratio) << " (" << fmt("%.2g", row.energy.p) << ") | ";
+    if (std::isfinite(row.noise_ratio))
+      t << fmt("%.3f", row.noise_ratio) << " (" << fmt("%.2g", row.noise.p) << ") | ";
+    else
+      t << "- | ";
+    if (row.same_worst_what.empty())
+      t << row.same_n << ", -";
+    else
+      t << row.same_n << ", " << row.same_worst_what << " " << fmt("%+.2f%%", 100.0 * std::expm1(row.same_worst.change))
+        << ", " << fmt("%.3g", row.same_worst.t.t) << " (" << fmt("%.2g", row.same_worst.t.p) << "), " << same_failing;
+    t << " | " << (fails ? "FAILS" : better ? "better" : "ok") << " |\n";
     if (fails) ++out.failures;
     g["status"] = fails ? "fails" : better ? "better" : "ok";
     auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
@@ -399,17 +602,30 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
     g["failing_blocks"] = failing_blocks;
     g["energy_ratio"] = finite_or_null(row.energy_ratio);
     g["energy_p"] = row.energy.p;
+    g["noise_ratio"] = finite_or_null(row.noise_ratio);
+    g["noise_p"] = row.noise.p;
+    g["same_seeds"] = row.same_n;
+    if (!row.same_worst_what.empty()) {
+      g["same_seeds_largest"] = row.same_worst_what;
+      g["same_seeds_change"] = finite_or_null(std::expm1(row.same_worst.change));
+      g["same_seeds_t"] = finite_or_null(row.same_worst.t.t);
+      g["same_seeds_p"] = row.same_worst.t.p;
+      g["same_seeds_failing"] = same_failing;
+    }
     out.groups.push_back(g);
   }
   for (const auto& [name, g] : fresh_groups) {
     const bool known = std::any_of(rows.begin(), rows.end(), [&n = name](const Row& r) { return r.group == n; });
-    if (!known) t << "| " << name << " | -, " << g.images.size() << " | not in the baseline | - | - | ok |\n";
+    if (!known) t << "| " << name << " | -, " << g.images.size() << " | not in the baseline | - | - | - | - | ok |\n";
   }
   out.passed = out.failures == 0;
   t << "\nA group fails when a p-value is below alpha/2 over the number of tests of its kind: "
     << fmt("%.3g", out.whole_image_threshold) << " for the " << out.whole_image_tests
-    << " tests of whole images (mean per channel, error energy), " << fmt("%.3g", out.block_threshold) << " for the "
-    << out.block_tests << " block tests (alpha " << fmt("%.3g", p.alpha) << ").\n";
+    << " tests of whole images (mean per channel, error energy, pixel noise), " << fmt("%.3g", out.block_threshold)
+    << " for the "
+    << out.block_tests << " block tests (alpha " << fmt("%.3g", p.alpha) << "); each kind counts the same-seed tests "
+    << "too, which compare a fresh seed with the baseline's render of that seed beyond a margin of "
+    << fmt("%.3g", 100.0 * p.same_seed_margin) << "%.\n";
   out.table = t.str();
   return out;
 }

@@ -476,7 +476,9 @@ json run_card(const Index& index, const json& group, const json& run) {
   json flip = image_figure(png, "run " + id, nullptr, aspect);
   flip["flip"] = {{"run", url(png)}, {"ref", url(text_of(index.reference(text_of(run, "reference")), "image_png"))},
                   {"id", id}};
-  json figures = {flip};
+  // json::array, not {flip}: clang copies a one-element brace list of a json (CWG 2137), GCC
+  // makes it an array.
+  json figures = json::array({flip});
   // A sequence: its measured frames beside their references, playing in step.
   const json& videos = member(run, "videos");
   if (!text_of(videos, "frame").empty()) figures.push_back(video_figure(text_of(videos, "frame"), "sequence", aspect));

@@ -1,5 +1,6 @@
 // The distribution check on synthetic renders whose distribution is known: a smooth image plus
-// independent normal noise per pixel and seed, with an "indirect" layer of half the signal.
+// independent normal noise per pixel and seed, with an "indirect" layer of half the signal and
+// all the noise.
 #include "core/eval/distribution_check.h"
 
 #include <gtest/gtest.h>
@@ -23,6 +24,8 @@ struct Synthetic {
   double noise = 0.1;        // per pixel and channel
   double bias = 0.0;         // added to every value
   double correlated = 0.0;   // one normal per image, shared by all its pixels (a VPL set's)
+  double gain = 1.0;         // multiplies every value (a relative bias)
+  uint64_t stream = 0;       // offsets the random numbers of every seed (a change of sampling)
 };
 
 // Writes `seeds` images of one group "g" (method "m") under dir/runs and returns their results JSON.
@@ -30,7 +33,7 @@ nlohmann::json write_runs(const fs::path& dir, uint64_t first_seed, int seeds, c
   nlohmann::json results = {{"runs", nlohmann::json::array()}, {"groups", nlohmann::json::array()}};
   nlohmann::json group = {{"group", "g"}, {"method", "m"}, {"runs", nlohmann::json::array()}};
   for (int k = 0; k < seeds; ++k) {
-    std::mt19937_64 rng(first_seed + uint64_t(k));
+    std::mt19937_64 rng(first_seed + uint64_t(k) + s.stream);
     std::normal_distribution<double> normal;
     const double shared = s.correlated * normal(rng);
     Image color(kSize, kSize), indirect(kSize, kSize);
@@ -38,18 +41,23 @@ nlohmann::json write_runs(const fs::path& dir, uint64_t first_seed, int seeds, c
       for (int x = 0; x < kSize; ++x)
         for (int c = 0; c < 3; ++c) {
           const double signal = 0.5 + 0.2 * std::sin(0.3 * x + c) * std::cos(0.2 * y);
-          indirect.at(x, y, c) = float(0.5 * signal);
-          color.at(x, y, c) = float(signal + s.bias + shared + s.noise * normal(rng));
+          // All the randomness is in the indirect half, as in a VPL method's render.
+          const double random = shared + s.noise * normal(rng);
+          indirect.at(x, y, c) = float(s.gain * (0.5 * signal + random));
+          color.at(x, y, c) = float(s.gain * (signal + s.bias + random));
         }
     const std::string id = "run" + std::to_string(first_seed + uint64_t(k));
     const std::string exr = "runs/" + id + "/image.exr";
     write_image((dir / exr).string(), color, {Layer{"indirect", indirect}});
-    results["runs"].push_back({{"id", id}, {"images", {{"exr", exr}}}});
+    results["runs"].push_back({{"id", id}, {"images", {{"exr", exr}}}, {"params", {{"seed", first_seed + uint64_t(k)}}}});
     group["runs"].push_back(id);
   }
   results["groups"].push_back(group);
   return results;
 }
+
+// The seeds whose renders the baseline keeps as same-seed records.
+constexpr uint64_t kCheckSeed = 100;
 
 struct Fixture {
   fs::path base_dir = test::temp_dir() / "baseline";
@@ -58,6 +66,8 @@ struct Fixture {
 
   explicit Fixture(const Synthetic& base = {}) {
     statistics = make_distribution_baseline(write_runs(base_dir, 1000, 24, base), base_dir.string(), base_dir.string());
+    const fs::path check_dir = base_dir / "check";
+    add_same_seed_records(statistics, write_runs(check_dir, kCheckSeed, 5, base), check_dir.string(), base_dir.string());
   }
   DistributionOutcome check(uint64_t first_seed, const Synthetic& s, const DistributionParams& p = {}) {
     fs::remove_all(fresh_dir);
@@ -129,6 +139,58 @@ TEST(DistributionCheck, NoiseSharedByAllPixelsIsAccountedForBySeeds) {
     DistributionOutcome out = f.check(9000 + 5 * set, {.correlated = 0.05});
     EXPECT_TRUE(out.passed) << "seed set " << set << "\n" << out.table;
   }
+}
+
+TEST(DistributionCheck, SameSeedsPassAnIdenticalRenderAndRounding) {
+  Fixture f;
+  DistributionOutcome same = f.check(kCheckSeed, {});
+  EXPECT_TRUE(same.passed) << same.table;
+  EXPECT_EQ(same.groups[0]["same_seeds"], 5);
+  EXPECT_EQ(same.groups[0]["same_seeds_change"], 0.0);
+  // 0.1% everywhere, as a change of rounding might move a render at most, is inside the margin.
+  DistributionOutcome rounded = f.check(kCheckSeed, {.gain = 1.001});
+  EXPECT_TRUE(rounded.passed) << rounded.table;
+  // The fresh records pair with these seeds.
+  ASSERT_EQ(same.same_seeds["g"].size(), 5u);
+  EXPECT_EQ(same.same_seeds["g"][0]["seed"], double(kCheckSeed));
+}
+
+TEST(DistributionCheck, SameSeedsCatchABiasFarBelowTheSeedToSeedSpread) {
+  // A shared offset of sd 0.05 per image (10% of the signal, as a VPL set moves the Cornell box):
+  // about 1.5% more everywhere (3% of the indirect half) is far inside it for the two-sample tests
+  // on other seeds, and far outside the same-seed ratios, which vary only with each seed's share
+  // of indirect light.
+  Fixture f({.correlated = 0.05});
+  DistributionParams p;
+  p.inject_bias = 0.03;
+  DistributionOutcome other_seeds = f.check(7000, {.correlated = 0.05}, p);
+  EXPECT_TRUE(other_seeds.passed) << other_seeds.table;
+  EXPECT_EQ(other_seeds.groups[0]["same_seeds"], 0);
+  DistributionOutcome same = f.check(kCheckSeed, {.correlated = 0.05}, p);
+  EXPECT_FALSE(same.passed) << same.table;
+  EXPECT_GT(same.groups[0]["same_seeds_failing"].get<int>(), 0);
+  EXPECT_GT(same.groups[0]["same_seeds_change"].get<double>(), 0.01) << same.table;
+  // A 2% gain, the same: a bias of 2% outside the 0.5% margin.
+  EXPECT_FALSE(f.check(kCheckSeed, {.correlated = 0.05, .gain = 1.02}).passed);
+}
+
+TEST(DistributionCheck, SameSeedsWithOtherRandomNumbersStillPass) {
+  // A change of sampling gives each seed other random numbers: the ratios spread like the
+  // estimates and the test must hold its level (ten such changes, fixed: all pass).
+  Fixture f({.correlated = 0.05});
+  for (uint64_t change = 1; change <= 10; ++change) {
+    DistributionOutcome out = f.check(kCheckSeed, {.correlated = 0.05, .stream = 7919 * change});
+    EXPECT_TRUE(out.passed) << "change " << change << "\n" << out.table;
+  }
+}
+
+TEST(DistributionCheck, SameSeedsCatchARiseInVarianceUnderSharedNoise) {
+  Fixture f({.correlated = 0.05});
+  DistributionParams p;
+  p.inject_variance = 0.5;
+  DistributionOutcome out = f.check(kCheckSeed, {.correlated = 0.05}, p);
+  EXPECT_FALSE(out.passed) << out.table;
+  EXPECT_EQ(out.groups[0]["same_seeds_largest"], "pixel noise") << out.table;
 }
 
 TEST(DistributionCheck, AMissingGroupFails) {

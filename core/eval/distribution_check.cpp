@@ -61,6 +61,14 @@ struct Reduction {
 
 int blocks_across(int pixels, int block) { return (pixels + block - 1) / block; }
 
+// The median of `squares` (reordered), 0 when empty.
+double median_of(std::vector<double>& squares) {
+  if (squares.empty()) return 0.0;
+  auto middle = squares.begin() + squares.size() / 2;
+  std::nth_element(squares.begin(), middle, squares.end());
+  return *middle;
+}
+
 // The log of the median over pixels and channels of the squared differences between horizontal
 // and vertical neighbours: the image's pixel-to-pixel noise. Unlike the error energy it ignores
 // what whole regions share (a VPL set's offset, a radiance cache's blotches), which varies from
@@ -75,10 +83,7 @@ double pixel_noise(const Image& im) {
         if (x + 1 < im.width) squares.push_back((im.at(x + 1, y, c) - v) * (im.at(x + 1, y, c) - v));
         if (y + 1 < im.height) squares.push_back((im.at(x, y + 1, c) - v) * (im.at(x, y + 1, c) - v));
       }
-  if (squares.empty()) return std::log(1e-300);
-  auto middle = squares.begin() + squares.size() / 2;
-  std::nth_element(squares.begin(), middle, squares.end());
-  return std::log(std::max(*middle, 1e-300));
+  return std::log(std::max(median_of(squares), 1e-300));
 }
 
 Reduction reduce(const Image& im, int block) {
@@ -113,9 +118,7 @@ double log_energy(const Image& im, const Image& mean, double scale) {
       const double d = double(im.data[i * im.channels + c]) - double(mean.data[i * mean.channels + c]);
       squares.push_back(d * d);
     }
-  auto middle = squares.begin() + squares.size() / 2;
-  std::nth_element(squares.begin(), middle, squares.end());
-  return std::log(std::max(scale * *middle, 1e-300));
+  return std::log(std::max(scale * median_of(squares), 1e-300));
 }
 
 struct MeanVariance {
@@ -234,11 +237,11 @@ nlohmann::json same_seed_record(double seed, const Reduction& r, double log_ener
           {"log_noise", r.log_noise}};
 }
 
-// A baseline record's values, checked against the group's sizes.
+// A baseline record, checked against the group's sizes.
 struct SameSeedRecord {
   double seed = NAN;
-  std::vector<double> image, blocks;
-  double log_energy = NAN, log_noise = NAN;
+  Reduction reduction;
+  double log_energy = NAN;
 };
 
 std::vector<SameSeedRecord> same_seed_records(const nlohmann::json& group, const std::string& name, size_t block_values) {
@@ -246,11 +249,12 @@ std::vector<SameSeedRecord> same_seed_records(const nlohmann::json& group, const
   for (const nlohmann::json& r : member(group, "same_seeds")) {
     SameSeedRecord rec;
     rec.seed = number(r, "seed");
-    rec.image = doubles(r, name, "image", kChannels);
-    rec.blocks = doubles(r, name, "blocks", block_values);
+    const std::vector<double> image = doubles(r, name, "image", kChannels);
+    std::copy(image.begin(), image.end(), rec.reduction.image.begin());
+    rec.reduction.blocks = doubles(r, name, "blocks", block_values);
+    rec.reduction.log_noise = number(r, "log_noise");
     rec.log_energy = number(r, "log_energy");
-    rec.log_noise = number(r, "log_noise");
-    if (!std::isfinite(rec.seed) || !std::isfinite(rec.log_energy) || !std::isfinite(rec.log_noise))
+    if (!std::isfinite(rec.seed) || !std::isfinite(rec.log_energy) || !std::isfinite(rec.reduction.log_noise))
       throw Error("check statistics of group '" + name +
                   "': a same-seed record needs a finite seed, log_energy and log_noise");
     out.push_back(std::move(rec));
@@ -410,14 +414,14 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
   // image means, the block means, the error energies and the pixel noise (margin_t).
   auto same_seed_tests = [&p](Row& row, const GroupRuns& g, const std::vector<Reduction>& fresh,
                               const std::vector<double>& energies, const std::vector<SameSeedRecord>& base, int blocks_x) {
-    std::vector<std::pair<const Reduction*, const SameSeedRecord*>> pairs;
+    std::vector<std::pair<const Reduction*, const Reduction*>> pairs;  // fresh, baseline
     std::vector<double> energy_ratios, noise_ratios;
     for (size_t s = 0; s < fresh.size(); ++s)
       for (const SameSeedRecord& r : base)
         if (r.seed == g.seeds[s]) {
-          pairs.push_back({&fresh[s], &r});
+          pairs.push_back({&fresh[s], &r.reduction});
           energy_ratios.push_back(energies[s] - r.log_energy);
-          noise_ratios.push_back(fresh[s].log_noise - r.log_noise);
+          noise_ratios.push_back(fresh[s].log_noise - r.reduction.log_noise);
           break;
         }
     row.same_n = int(pairs.size());
@@ -431,13 +435,13 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
       for (const auto& [f, b] : pairs) floor[c] += 1e-3 * b->image[c] / double(pairs.size());
       floor[c] = std::max(floor[c], 1e-12);
     }
-    auto log_ratios = [&](auto value, double fl) {
+    auto log_ratios = [&](auto value, double fl) {  // value(const Reduction&)
       std::vector<double> d;
       for (const auto& [f, b] : pairs) d.push_back(log_above(value(*f), fl) - log_above(value(*b), fl));
       return d;
     };
     for (int c = 0; c < kChannels; ++c) {
-      const MarginTest m = margin_t(log_ratios([c](const auto& r) { return r.image[c]; }, floor[c]), margin, false);
+      const MarginTest m = margin_t(log_ratios([c](const Reduction& r) { return r.image[c]; }, floor[c]), margin, false);
       row.same_whole_p.push_back(m.t.p);
       consider(m, std::string("image ") + "RGB"[c]);
     }
@@ -446,7 +450,7 @@ DistributionOutcome check_distribution(const nlohmann::json& fresh, const std::s
       double base_mean = 0.0;
       for (const auto& [f, b] : pairs) base_mean += b->blocks[k] / double(pairs.size());
       if (!(base_mean > floor[c])) continue;  // a black block has no ratio to test
-      const MarginTest m = margin_t(log_ratios([k](const auto& r) { return r.blocks[k]; }, floor[c]), margin, false);
+      const MarginTest m = margin_t(log_ratios([k](const Reduction& r) { return r.blocks[k]; }, floor[c]), margin, false);
       row.same_block_p.push_back(m.t.p);
       const int index = int(k / kChannels);
       consider(m, "block (" + std::to_string(index % blocks_x) + "," + std::to_string(index / blocks_x) + ") " + "RGB"[c]);

@@ -111,6 +111,7 @@ RTCRay to_rtc(const Ray& ray) {
 }  // namespace
 
 Hit EmbreeAccel::intersect(const Ray& ray) const {
+  if (log_) log_->add({ray.origin, ray.tmin, ray.direction, ray.tmax, false});
   if (flat_) return flat_bvh_intersect(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax, alpha_scene_);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -128,12 +129,41 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
 }
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
+  if (log_) log_->add({ray.origin, ray.tmin, ray.direction, ray.tmax, true});
   if (flat_) return flat_bvh_occluded(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax, alpha_scene_);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = to_rtc(ray);
   rtcOccluded1(scene_, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
+}
+
+size_t EmbreeAccel::replay(const RecordedRay* rays, size_t count) const {
+  if (!scene_) throw Error("replay needs an Embree accel, not the flat BVH");
+  size_t hits = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const RecordedRay& r = rays[i];
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    Ray ray;
+    ray.origin = r.origin;
+    ray.direction = r.direction;
+    ray.tmin = r.tmin;
+    ray.tmax = r.tmax;
+    if (r.occlusion) {
+      RTCRay q = to_rtc(ray);
+      rtcOccluded1(scene_, &context, &q);
+      hits += q.tfar < 0.0f;
+    } else {
+      RTCRayHit rh;
+      rh.ray = to_rtc(ray);
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene_, &context, &rh);
+      hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+  }
+  return hits;
 }
 
 }  // namespace sst

@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "core/accel/bvh_layout.h"
+#include "core/accel/ray_log.h"
 #include "core/accel/ray_offset.h"
 #include "core/math/math.h"
 #include "core/scene/scene.h"
@@ -55,6 +56,14 @@ class EmbreeAccel {
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
 
+  // While `log` is set, every query is also appended to it (one predictable branch per query when
+  // it is not). The log must outlive its use; pass null to stop.
+  void set_ray_log(RayLog* log) { log_ = log; }
+  // Traces `rays` through Embree alone, rtcIntersect1 and rtcOccluded1 one ray at a time as
+  // intersect() and occluded() do, on the calling thread; returns how many found a hit (so that
+  // the work cannot be optimised away). Embree accels only.
+  size_t replay(const RecordedRay* rays, size_t count) const;
+
   // The ray offset of a point known only by its coordinates (scene_ray_epsilon).
   float scene_epsilon() const { return epsilon_; }
   // The shadow ray between point p (geometric normal ng_p, on the side of y) and y
@@ -75,6 +84,7 @@ class EmbreeAccel {
   float epsilon_ = 0.0f;
   const Scene* alpha_scene_ = nullptr;  // set when a material has an alpha test
   std::unique_ptr<FlatBvh> flat_;  // set: queries go to the flat BVH instead of Embree
+  RayLog* log_ = nullptr;
 };
 
 // The RAY_* hooks of the shared path kernels (core/pt/trace_path.h): the closest hit along

@@ -2,9 +2,20 @@
 // size (180x320, diffuse-only, 8 bounces, 2 threads) and on the built-in Cornell box (256x256),
 // the renders the Cycles references were made with (see cycles_side_by_side.sh for Cycles).
 // Only the path-tracing pass is timed: loading and the acceleration structure are built once.
+//
+// BM_PathTraceVsEmbree/<scene> measures how close the path tracer comes to Embree's own rate for
+// the rays it traces (issue 16, goal 1): one render at kMixSpp records its rays (camera, bounce,
+// light-sample shadow rays, in each thread's order; core/accel/ray_log.h), then every iteration
+// renders the same samples again and replays the recorded rays through rtcIntersect1/rtcOccluded1
+// alone, both on 2 threads, one after the other. Counters: medians of pt_ms and embree_ms, and of
+// their per-iteration ratio embree_share = embree_ms / pt_ms (the goal: >= 0.7).
 #include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
+#include <tbb/parallel_reduce.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <memory>
 
@@ -18,6 +29,13 @@ namespace {
 // of more than one spp, so the figure is what a user's render costs per spp.
 constexpr int kSpp = 16;
 
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
 struct Prepared {
   sst::Scene scene;
   sst::RenderOptions options;
@@ -26,10 +44,10 @@ struct Prepared {
   std::unique_ptr<sst::PinholeCamera> camera;
   std::unique_ptr<sst::Method> method;
 
-  Prepared(sst::Scene s, int width, int height) : scene(std::move(s)) {
+  Prepared(sst::Scene s, int width, int height, int spp = kSpp) : scene(std::move(s)) {
     options.width = width;
     options.height = height;
-    options.spp = kSpp;
+    options.spp = spp;
     options.diffuse_only = true;
     accel = std::make_unique<sst::EmbreeAccel>(scene);
     lights = std::make_unique<sst::LightSampler>(scene);
@@ -73,7 +91,77 @@ void BM_PathTraceCornellBox(benchmark::State& state) {
   run(state, prepared);
 }
 
+// Samples per pixel of the ray-mix comparison: the recorded rays of the staircase at 4 spp take
+// about 80 MB.
+constexpr int kMixSpp = 4;
+
+std::unique_ptr<Prepared> prepare_shared(const char* folder, const char* file, int width, int height) {
+  std::filesystem::path path = std::filesystem::path(SST_SHARED_SCENES) / folder / file;
+  if (!std::filesystem::exists(path)) return nullptr;
+  return std::make_unique<Prepared>(sst::load_gltf(path.string()), width, height, kMixSpp);
+}
+
+void path_trace_vs_embree(benchmark::State& state, Prepared& p) {
+  tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
+  p.options.seed = 0;
+  sst::RenderContext context{p.scene, *p.accel, *p.lights, *p.camera, p.options, p.options.width, p.options.height, true};
+  sst::RayLog log;
+  {
+    p.accel->set_ray_log(&log);
+    sst::StageTimer timer;
+    p.method->render(context, timer);
+    p.accel->set_ray_log(nullptr);
+  }
+  const std::vector<sst::RecordedRay> rays = log.take();
+  const sst::RayMix mix = sst::ray_mix(rays);
+  std::vector<double> pt_ms, embree_ms, share;
+  for (auto _ : state) {
+    sst::StageTimer timer;
+    sst::FrameOutput frame = p.method->render(context, timer);
+    benchmark::DoNotOptimize(frame.color.data.data());
+    const auto start = std::chrono::steady_clock::now();
+    size_t hits = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, rays.size(), 4096), size_t(0),
+        [&](const tbb::blocked_range<size_t>& r, size_t h) {
+          return h + p.accel->replay(rays.data() + r.begin(), r.size());
+        },
+        std::plus<size_t>());
+    benchmark::DoNotOptimize(hits);
+    const double replay_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    pt_ms.push_back(timer.ms("render"));
+    embree_ms.push_back(replay_ms);
+    share.push_back(replay_ms / timer.ms("render"));
+    state.SetIterationTime((timer.ms("render") + replay_ms) / 1e3);
+  }
+  state.counters["pt_ms"] = median(pt_ms);
+  state.counters["embree_ms"] = median(embree_ms);
+  state.counters["embree_share"] = median(share);
+  state.counters["closest_hit_rays"] = double(mix.closest_hit);
+  state.counters["occlusion_rays"] = double(mix.occlusion);
+  state.counters["embree_Mrays_per_s"] = double(rays.size()) / median(embree_ms) / 1e3;
+}
+
+void BM_PathTraceVsEmbreeStaircase(benchmark::State& state) {
+  static std::unique_ptr<Prepared> prepared = prepare_shared("staircase", "staircase.gltf", 180, 320);
+  if (!prepared) return state.SkipWithError("../shared/scenes/staircase not present");
+  path_trace_vs_embree(state, *prepared);
+}
+
+void BM_PathTraceVsEmbreeBreakfastRoom(benchmark::State& state) {
+  static std::unique_ptr<Prepared> prepared = prepare_shared("breakfast-room", "breakfast-room.gltf", 320, 180);
+  if (!prepared) return state.SkipWithError("../shared/scenes/breakfast-room not present");
+  path_trace_vs_embree(state, *prepared);
+}
+
+void BM_PathTraceVsEmbreeCornellBox(benchmark::State& state) {
+  static Prepared prepared(sst::load_default_scene(), 256, 256, kMixSpp);
+  path_trace_vs_embree(state, prepared);
+}
+
 BENCHMARK(BM_PathTraceStaircase)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(4.0);
 BENCHMARK(BM_PathTraceCornellBox)->UseManualTime()->Unit(benchmark::kMillisecond)->MinTime(4.0);
+BENCHMARK(BM_PathTraceVsEmbreeStaircase)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(7);
+BENCHMARK(BM_PathTraceVsEmbreeBreakfastRoom)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(7);
+BENCHMARK(BM_PathTraceVsEmbreeCornellBox)->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(7);
 
 }  // namespace

@@ -22,6 +22,7 @@
 
 #include "core/lighttree/light_node.h"
 #include "core/math/math.h"
+#include "core/util/memory.h"
 #include "core/util/params.h"
 #include "core/vpl/vpl.h"
 
@@ -37,7 +38,7 @@ namespace sst {
 //   [2^l, 2^(l+1)).
 struct LightTree {
   std::string kind;  // the builder: radix, perfect, agglomerative
-  std::vector<LightNode> nodes;
+  UninitializedVector<LightNode> nodes;  // builders: resize_uninitialized, then write every node
   uint32_t root = kNoNode;  // kNoNode for an empty VPL set
   uint32_t first_leaf = 0;
   uint32_t leaf_count = 0;  // including padding leaves

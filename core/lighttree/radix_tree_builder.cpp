@@ -32,12 +32,12 @@ constexpr uint32_t kMergeChunk = 2048;
 
 void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree) {
   const size_t n = scratch.keys.size();
-  tree.nodes.resize(n == 0 ? 0 : 2 * n - 1);
+  resize_uninitialized(tree.nodes, n == 0 ? 0 : 2 * n - 1);
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
-  scratch.parents.resize(tree.nodes.size());
-  scratch.topology.resize(n == 0 ? 0 : n - 1);
+  resize_uninitialized(scratch.parents, tree.nodes.size());
+  resize_uninitialized(scratch.topology, n == 0 ? 0 : n - 1);
   if (n == 0) return;
   scratch.parents[0] = kNoNode;
   const uint64_t* keys = scratch.keys.data();

@@ -15,13 +15,13 @@ namespace sst {
 struct LightTreeBuilder::Scratch {
   std::vector<uint64_t> keys;  // after sorting: ascending; sort_key_vpl(keys[i]) is the VPL at position i
   RadixSortScratch sort;
-  std::vector<uint32_t> parents;  // radix: parent of every node
+  UninitializedVector<uint32_t> parents;  // radix: parent of every node (resize_uninitialized)
   // radix: internal node i's children and the sorted positions [first, last] of its leaves, kept
   // apart from the tree's nodes so that those are written once, by the merge.
   struct Topology {
     uint32_t left, right, first, last;
   };
-  std::vector<Topology> topology;
+  UninitializedVector<Topology> topology;
   std::unique_ptr<std::atomic<uint32_t>[]> visits;  // radix: arrivals per internal node
   size_t visits_size = 0;
 };

@@ -50,4 +50,18 @@ void resize_on_huge_pages(UninitializedVector<T>& v, size_t n) {
   v.resize(n);
 }
 
+// v resized to n elements, unwritten, for a writer that writes every one: storage kept from an
+// earlier call is reused (a build per frame allocates nothing), and a larger array goes on huge
+// pages where offered. First-touching the 19 MB of a 100k-VPL light tree in 4-KiB page faults
+// cost this project's virtual machines more than building it.
+template <class T>
+void resize_uninitialized(UninitializedVector<T>& v, size_t n) {
+  if (n > v.capacity()) {
+    v = {};
+    resize_on_huge_pages(v, n);
+  } else {
+    v.resize(n);
+  }
+}
+
 }  // namespace sst

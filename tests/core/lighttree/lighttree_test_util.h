@@ -92,7 +92,7 @@ inline bool all_finite(const LightNode& n) {
          std::isfinite(n.similarity) && std::isfinite(n.sigma_z);
 }
 
-inline bool same_bytes(const std::vector<LightNode>& a, const std::vector<LightNode>& b) {
+inline bool same_bytes(const UninitializedVector<LightNode>& a, const UninitializedVector<LightNode>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(LightNode)) == 0);
 }
 

@@ -111,7 +111,8 @@ RTCRay to_rtc(const Ray& ray) {
 }  // namespace
 
 Hit EmbreeAccel::intersect(const Ray& ray) const {
-  if (log_) log_->add({ray.origin, ray.tmin, ray.direction, ray.tmax, false});
+  if (log_) [[unlikely]]
+    log_->add({ray.origin, ray.tmin, ray.direction, ray.tmax, false});
   if (flat_) return flat_bvh_intersect(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax, alpha_scene_);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -129,7 +130,8 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
 }
 
 bool EmbreeAccel::occluded(const Ray& ray) const {
-  if (log_) log_->add({ray.origin, ray.tmin, ray.direction, ray.tmax, true});
+  if (log_) [[unlikely]]
+    log_->add({ray.origin, ray.tmin, ray.direction, ray.tmax, true});
   if (flat_) return flat_bvh_occluded(*flat_, ray.origin, ray.direction, ray.tmin, ray.tmax, alpha_scene_);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

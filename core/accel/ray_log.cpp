@@ -2,6 +2,8 @@
 
 namespace sst {
 
+void RayLog::add(const RecordedRay& ray) { per_thread_.local().push_back(ray); }
+
 std::vector<RecordedRay> RayLog::take() {
   std::vector<RecordedRay> all;
   size_t n = 0;

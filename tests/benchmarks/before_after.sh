@@ -1,40 +1,57 @@
 #!/bin/bash
-# CPU speed of two builds, interleaved: the path-tracing benchmarks (sst_benchmarks) and the
-# many-light stage times of sst-render (vpl_generation, tree_build, sampling) on
-# breakfast-room-point with 100k VPLs, medians over ROUNDS rounds.
+# CPU speed of two builds, interleaved: the path-tracing benchmarks (sst_benchmarks) and every
+# method's stage times in sst-render on breakfast-room-point (256 px wide, 4 spp, 2 threads; the
+# VPL methods with 100k VPLs, exhaustive with 1000, pt with 8 bounces, gi10 with its defaults),
+# medians over ROUNDS rounds. `frame` is the sum of a method's stages after the scene is loaded
+# and its accel built (load, accel_build and write are left out: no method changes them).
 #   tests/benchmarks/before_after.sh BEFORE_BUILD_DIR AFTER_BUILD_DIR [ROUNDS]
 # Run on an otherwise idle machine. Scene: SST_SCENE_DIR (default /work/shared/scenes).
 set -euo pipefail
 before=${1:?before build dir}; after=${2:?after build dir}; rounds=${3:-3}
 scene=${SST_SCENE_DIR:-/work/shared/scenes}/breakfast-room/breakfast-room-point.gltf
+[ -f "$scene" ] || { echo "error: $scene not found (set SST_SCENE_DIR)" >&2; exit 1; }
+methods="pt exhaustive uniform slc sst rtslc hybrid gi10"
 out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
 for r in $(seq "$rounds"); do
   for b in before after; do
     dir=$before; [ "$b" = after ] && dir=$after
-    "$dir/tests/sst_benchmarks" --benchmark_filter='BM_PathTrace' 2>/dev/null | grep '^BM_' |
+    "$dir/tests/sst_benchmarks" --benchmark_filter='BM_PathTrace(Staircase|CornellBox)' 2>/dev/null | grep '^BM_' |
       awk -v b=$b '{print b, $1, $2}' >> "$out/pt.txt"
-    for m in slc sst rtslc hybrid; do
-      "$dir/sst-render" "$scene" --method $m --vpls 100000 --spp 4 --width 256 --threads 2 -q \
+    for m in $methods; do
+      extra=(--vpls 100000)
+      case $m in
+        pt) extra=(--max-bounces 8) ;;
+        gi10) extra=() ;;
+        exhaustive) extra=(--vpls 1000) ;;
+      esac
+      "$dir/sst-render" "$scene" --method $m "${extra[@]}" --spp 4 --width 256 --threads 2 -q \
         -o "$out/$b-$m-$r.exr" --json "$out/$b-$m-$r.json" > /dev/null
     done
   done
 done
-python3 - "$out" <<'PY'
+python3 - "$out" "$methods" <<'PY'
 import collections, glob, json, statistics, sys
-out = sys.argv[1]
+out, methods = sys.argv[1], sys.argv[2].split()
 pt = collections.defaultdict(list)
 for line in open(out + '/pt.txt'):
     b, name, ms = line.split()
     pt[(name.split('/')[0], b)].append(float(ms))
-for (name, b), v in sorted(pt.items()):
-    print(f"{name:28s} {b:6s} median {statistics.median(v):8.1f} ms  {v}")
+print(f"{'benchmark':28s} {'before':>9s} {'after':>9s} {'after/before':>12s}")
+for name in sorted({n for n, _ in pt}):
+    a, z = statistics.median(pt[(name, 'before')]), statistics.median(pt[(name, 'after')])
+    print(f"{name:28s} {a:9.1f} {z:9.1f} {z / a:12.3f}")
+skip = {'load', 'accel_build', 'write'}
 st = collections.defaultdict(list)
 for f in glob.glob(out + '/*.json'):
     b, m, _ = f.split('/')[-1][:-5].split('-')
     t = json.load(open(f))['timings_ms']
-    for k in ('vpl_generation', 'tree_build', 'sampling'):
-        if k in t: st[(m, k, b)].append(t[k]['median'])
-for (m, k, b), v in sorted(st.items()):
-    print(f"{m:7s} {k:15s} {b:6s} median {statistics.median(v):9.2f} ms  n={len(v)}")
+    stages = {k: v['median'] for k, v in t.items() if k not in skip}
+    stages['frame'] = sum(stages.values())
+    for k, v in stages.items(): st[(m, k, b)].append(v)
+print(f"\n{'method':10s} {'stage':16s} {'before ms':>10s} {'after ms':>10s} {'after/before':>12s}   (medians of {len(st[(methods[0], 'frame', 'before')])})")
+for m in methods:
+    for k in sorted({k for mm, k, _ in st if mm == m}, key=lambda k: (k == 'frame', k)):
+        a, z = statistics.median(st[(m, k, 'before')]), statistics.median(st[(m, k, 'after')])
+        print(f"{m:10s} {k:16s} {a:10.2f} {z:10.2f} {z / a if a else float('nan'):12.3f}")
 PY
-rm -rf "$out"

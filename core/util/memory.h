@@ -15,6 +15,11 @@ namespace sst {
 // transparent huge pages are off or unsupported, or for arrays under 2 MiB.
 void advise_huge_pages(void* p, size_t bytes);
 
+// Returns the free memory of every malloc arena to the kernel (glibc's malloc_trim; nothing
+// elsewhere): after many small buffers are freed at once, so that they do not count in the peak
+// resident memory of what follows.
+void release_free_memory();
+
 // std::allocator whose value-less construct() default-initialises: resize() of a vector of
 // trivial elements then leaves them unwritten, for a parallel writer to fill (and to touch the
 // pages first on the thread that uses them).

@@ -117,7 +117,7 @@ void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorte
   auto [mx, my] = std::pair<uint32_t, uint32_t>{std::min(n, kMaxGroupsX), (n + kMaxGroupsX - 1) / kMaxGroupsX};
   stats.merge_ms =
       merge_->dispatch({&vpls, sorted.ids.get(), parents.get(), visits.get(), nodes.get()}, &push, mx, my);
-  resize_uninitialized(tree.nodes, node_count);
+  resize_uninitialized(tree.nodes, node_count, /*huge_pages=*/false);
   nodes->download(std::span<LightNode>(tree.nodes));
 }
 
@@ -137,7 +137,7 @@ void GpuLightTreeBuilder::build_perfect(const GpuBuffer& vpls, const Sorted& sor
     push.count = level;
     stats.merge_ms += run(*perfect_merge_, {nodes.get()}, push, level);
   }
-  resize_uninitialized(tree.nodes, 2 * size_t(leaves));
+  resize_uninitialized(tree.nodes, 2 * size_t(leaves), /*huge_pages=*/false);
   nodes->download(std::span<LightNode>(tree.nodes));
 }
 

@@ -192,7 +192,7 @@ void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& th
   if (n > kMaxAgglomerativeVpls)
     throw Error("light tree: tree 'agglomerative' is O(n^2) and limited to " + std::to_string(kMaxAgglomerativeVpls) +
                 " VPLs, got " + std::to_string(n) + " (use tree 'radix' or 'perfect')");
-  resize_uninitialized(tree.nodes, n == 0 ? 0 : 2 * n - 1);
+  resize_uninitialized(tree.nodes, n == 0 ? 0 : 2 * n - 1, /*huge_pages=*/false);
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);

@@ -47,7 +47,7 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
     return;
   }
   const uint32_t leaves = std::bit_ceil(uint32_t(n));
-  resize_uninitialized(tree.nodes, 2 * size_t(leaves));
+  resize_uninitialized(tree.nodes, 2 * size_t(leaves), /*huge_pages=*/false);
   tree.root = 1;
   tree.first_leaf = leaves;
   tree.leaf_count = leaves;

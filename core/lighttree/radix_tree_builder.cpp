@@ -32,12 +32,12 @@ constexpr uint32_t kMergeChunk = 2048;
 
 void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree) {
   const size_t n = scratch.keys.size();
-  resize_uninitialized(tree.nodes, n == 0 ? 0 : 2 * n - 1);
+  resize_uninitialized(tree.nodes, n == 0 ? 0 : 2 * n - 1, /*huge_pages=*/false);
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
-  resize_uninitialized(scratch.parents, tree.nodes.size());
-  resize_uninitialized(scratch.topology, n == 0 ? 0 : n - 1);
+  resize_uninitialized(scratch.parents, tree.nodes.size(), /*huge_pages=*/true);
+  resize_uninitialized(scratch.topology, n == 0 ? 0 : n - 1, /*huge_pages=*/true);
   if (n == 0) return;
   scratch.parents[0] = kNoNode;
   const uint64_t* keys = scratch.keys.data();

@@ -141,29 +141,15 @@ bool EmbreeAccel::occluded(const Ray& ray) const {
 }
 
 size_t EmbreeAccel::replay(const RecordedRay* rays, size_t count) const {
-  if (!scene_) throw Error("replay needs an Embree accel, not the flat BVH");
   size_t hits = 0;
   for (size_t i = 0; i < count; ++i) {
     const RecordedRay& r = rays[i];
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
     Ray ray;
     ray.origin = r.origin;
     ray.direction = r.direction;
     ray.tmin = r.tmin;
     ray.tmax = r.tmax;
-    if (r.occlusion) {
-      RTCRay q = to_rtc(ray);
-      rtcOccluded1(scene_, &context, &q);
-      hits += q.tfar < 0.0f;
-    } else {
-      RTCRayHit rh;
-      rh.ray = to_rtc(ray);
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene_, &context, &rh);
-      hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    }
+    hits += r.occlusion ? occluded(ray) : intersect(ray).valid();
   }
   return hits;
 }

@@ -59,9 +59,9 @@ class EmbreeAccel {
   // While `log` is set, every query is also appended to it (one predictable branch per query when
   // it is not). The log must outlive its use; pass null to stop.
   void set_ray_log(RayLog* log) { log_ = log; }
-  // Traces `rays` through Embree alone, rtcIntersect1 and rtcOccluded1 one ray at a time as
-  // intersect() and occluded() do, on the calling thread; returns how many found a hit (so that
-  // the work cannot be optimised away). Embree accels only.
+  // Traces `rays` through intersect() and occluded() alone (rtcIntersect1 and rtcOccluded1, one
+  // ray at a time, for an Embree accel), on the calling thread; returns how many found a hit, so
+  // that the work cannot be optimised away. Not while a log is set: it would record them again.
   size_t replay(const RecordedRay* rays, size_t count) const;
 
   // The ray offset of a point known only by its coordinates (scene_ray_epsilon).

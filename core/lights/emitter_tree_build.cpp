@@ -142,7 +142,7 @@ EmitterTree build_emitter_tree(std::span<const glsl::EmitterNode> lights) {
   tree.leaves = n == 0 ? 0u : std::bit_ceil(uint32_t(n));
   tree.directional_count = uint32_t(directional.size());
   const size_t node_count = size_t(2) * tree.leaves + directional.size();
-  resize_on_huge_pages(tree.nodes, node_count);  // unwritten: every node is written once below
+  resize_uninitialized(tree.nodes, node_count, /*huge_pages=*/true);  // unwritten: every node is written once below
   if (tree.leaves > 0) tree.nodes[0] = empty_node();
 
   // Morton order of the centres, ties by entry: a stable radix sort of the codes alone, since the
@@ -157,7 +157,7 @@ EmitterTree build_emitter_tree(std::span<const glsl::EmitterNode> lights) {
 
   const uint32_t leaves = tree.leaves;
   UninitializedVector<double> theta;  // written for every node with the node
-  resize_on_huge_pages(theta, size_t(2) * leaves);
+  resize_uninitialized(theta, size_t(2) * leaves, /*huge_pages=*/true);
   parallel_range(0, leaves, [&](size_t k) {
     if (k >= n) {  // padding
       tree.nodes[leaves + k] = empty_node();

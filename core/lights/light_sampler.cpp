@@ -161,7 +161,7 @@ LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&
   const size_t emissive_count = packed_.emissive.size();
   std::vector<double> weights(punctual_count + emissive_count);
   UninitializedVector<glsl::EmitterNode> leaves;
-  if (tree) resize_on_huge_pages(leaves, weights.size());
+  if (tree) resize_uninitialized(leaves, weights.size(), /*huge_pages=*/true);
   for (uint32_t i = 0; i < punctual_count; ++i) {
     weights[i] = punctual_power(scene.lights[i], scene.bounds);
     if (tree) leaves[i] = punctual_leaf(scene.lights[i]);

@@ -47,30 +47,19 @@ struct DefaultInitAllocator : std::allocator<T> {
 template <class T>
 using UninitializedVector = std::vector<T, DefaultInitAllocator<T>>;
 
-// An empty UninitializedVector resized to n elements on huge pages where offered, unwritten.
-template <class T>
-void resize_on_huge_pages(UninitializedVector<T>& v, size_t n) {
-  v.reserve(n);
-  advise_huge_pages(v.data(), n * sizeof(T));
-  v.resize(n);
-}
-
 // v resized to n elements, unwritten, for a writer that writes every one: storage kept from an
-// earlier call is reused (a build per frame allocates nothing). With `huge_pages`, a larger array
-// goes on huge pages where offered: for scratch that only a build touches. Not for what is read
-// on every sample: light-tree nodes on huge pages made rtslc's and the hybrid's sampling 3-5%
+// earlier call is reused (a build per frame allocates nothing). With `huge_pages`, new storage goes
+// on huge pages where offered (advise_huge_pages), before anything touches it. Not for what is
+// read on every sample: light-tree nodes on huge pages made rtslc's and the hybrid's sampling 3-5%
 // slower on this project's VM, though their single-frame build 36 -> 15 ms faster.
 template <class T>
 void resize_uninitialized(UninitializedVector<T>& v, size_t n, bool huge_pages) {
-  if (n <= v.capacity()) {
-    v.resize(n);
-  } else if (huge_pages) {
-    v = {};
-    resize_on_huge_pages(v, n);
-  } else {
-    v = {};
-    v.resize(n);
+  if (n > v.capacity()) {
+    v = {};  // nothing to copy: the old elements are not kept
+    v.reserve(n);
+    if (huge_pages) advise_huge_pages(v.data(), n * sizeof(T));
   }
+  v.resize(n);
 }
 
 }  // namespace sst

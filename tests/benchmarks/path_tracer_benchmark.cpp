@@ -14,27 +14,21 @@
 #include <tbb/global_control.h>
 #include <tbb/parallel_reduce.h>
 
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "core/pipeline/method_registry.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
+#include "core/util/statistics.h"
 
 namespace {
 
 // Samples per pixel of one timed render: a pixel's samples run back to back, as in any render
 // of more than one spp, so the figure is what a user's render costs per spp.
 constexpr int kSpp = 16;
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 struct Prepared {
   sst::Scene scene;
@@ -75,14 +69,16 @@ void run(benchmark::State& state, Prepared& p) {
   state.counters["Mrays_per_s"] = double(rays) / seconds / 1e6;
 }
 
+// A scene of ../shared/scenes, or null when it is absent.
+std::unique_ptr<Prepared> prepare_shared(const char* folder, const char* file, int width, int height, int spp) {
+  std::filesystem::path path = std::filesystem::path(SST_SHARED_SCENES) / folder / file;
+  if (!std::filesystem::exists(path)) return nullptr;
+  return std::make_unique<Prepared>(sst::load_gltf(path.string()), width, height, spp);
+}
+
 void BM_PathTraceStaircase(benchmark::State& state) {
-  static std::unique_ptr<Prepared> prepared;
-  std::filesystem::path path = std::filesystem::path(SST_SHARED_SCENES) / "staircase" / "staircase.gltf";
-  if (!std::filesystem::exists(path)) {
-    state.SkipWithError("../shared/scenes/staircase not present");
-    return;
-  }
-  if (!prepared) prepared = std::make_unique<Prepared>(sst::load_gltf(path.string()), 180, 320);
+  static std::unique_ptr<Prepared> prepared = prepare_shared("staircase", "staircase.gltf", 180, 320, kSpp);
+  if (!prepared) return state.SkipWithError("../shared/scenes/staircase not present");
   run(state, *prepared);
 }
 
@@ -94,12 +90,6 @@ void BM_PathTraceCornellBox(benchmark::State& state) {
 // Samples per pixel of the ray-mix comparison: the recorded rays of the staircase at 4 spp take
 // about 72 MB (2M rays of 36 bytes).
 constexpr int kMixSpp = 4;
-
-std::unique_ptr<Prepared> prepare_shared(const char* folder, const char* file, int width, int height) {
-  std::filesystem::path path = std::filesystem::path(SST_SHARED_SCENES) / folder / file;
-  if (!std::filesystem::exists(path)) return nullptr;
-  return std::make_unique<Prepared>(sst::load_gltf(path.string()), width, height, kMixSpp);
-}
 
 void path_trace_vs_embree(benchmark::State& state, Prepared& p) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, 2);
@@ -133,22 +123,22 @@ void path_trace_vs_embree(benchmark::State& state, Prepared& p) {
     share.push_back(replay_ms / timer.ms("render"));
     state.SetIterationTime((timer.ms("render") + replay_ms) / 1e3);
   }
-  state.counters["pt_ms"] = median(pt_ms);
-  state.counters["embree_ms"] = median(embree_ms);
-  state.counters["embree_share"] = median(share);
+  state.counters["pt_ms"] = sst::median(pt_ms);
+  state.counters["embree_ms"] = sst::median(embree_ms);
+  state.counters["embree_share"] = sst::median(share);
   state.counters["closest_hit_rays"] = double(mix.closest_hit);
   state.counters["occlusion_rays"] = double(mix.occlusion);
-  state.counters["embree_Mrays_per_s"] = double(rays.size()) / median(embree_ms) / 1e3;
+  state.counters["embree_Mrays_per_s"] = double(rays.size()) / sst::median(embree_ms) / 1e3;
 }
 
 void BM_PathTraceVsEmbreeStaircase(benchmark::State& state) {
-  static std::unique_ptr<Prepared> prepared = prepare_shared("staircase", "staircase.gltf", 180, 320);
+  static std::unique_ptr<Prepared> prepared = prepare_shared("staircase", "staircase.gltf", 180, 320, kMixSpp);
   if (!prepared) return state.SkipWithError("../shared/scenes/staircase not present");
   path_trace_vs_embree(state, *prepared);
 }
 
 void BM_PathTraceVsEmbreeBreakfastRoom(benchmark::State& state) {
-  static std::unique_ptr<Prepared> prepared = prepare_shared("breakfast-room", "breakfast-room.gltf", 320, 180);
+  static std::unique_ptr<Prepared> prepared = prepare_shared("breakfast-room", "breakfast-room.gltf", 320, 180, kMixSpp);
   if (!prepared) return state.SkipWithError("../shared/scenes/breakfast-room not present");
   path_trace_vs_embree(state, *prepared);
 }

@@ -87,8 +87,7 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   } else {
     sort_vpls(vpls, bounds, *scratch_, stats);
     if (params.tree == "radix") {
-      timed(stats.hierarchy_ms, [&] { build_radix_hierarchy(*scratch_, tree); });
-      timed(stats.merge_ms, [&] { merge_radix_tree(vpls, thresholds, *scratch_, tree); });
+      timed(stats.merge_ms, [&] { build_radix_tree(vpls, thresholds, *scratch_, tree); });
     } else {
       timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, *scratch_, tree); });
     }

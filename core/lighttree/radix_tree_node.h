@@ -84,6 +84,38 @@ SST_FUNC RadixTreeNode radix_tree_node(RADIX_TREE_KEYS_PARAM int n, int i) {
   return node;
 }
 
+// The same tree found bottom-up (Apetrei 2014, "Fast and Simple Agglomerative LBVH
+// Construction"): the node covering sorted positions [first, last] knows its parent from the keys
+// at its two ends alone, which lets a climb from the leaves merge as it goes, with no topology
+// stored. A node's keys are those sharing its prefix, so its parent extends it towards the
+// neighbour sharing the longer prefix (never a tie: the keys are unique and sorted), and splits
+// between the node and that neighbour.
+struct RadixTreeParent {
+  uint split;      // the parent's children cover [parent first, split] and [split + 1, parent last]
+  bool left_side;  // the node is the parent's first child: it ends at the split
+  int prefix;      // the parent's common prefix: sorted position k is in the parent iff
+                   // radix_tree_delta(k, a position of the node) >= prefix
+};
+
+// The parent of the node covering [first, last], which is not the root.
+SST_FUNC RadixTreeParent radix_tree_parent(RADIX_TREE_KEYS_PARAM int n, int first, int last) {
+  int before = radix_tree_delta(RADIX_TREE_KEYS_ARG n, first, first - 1);
+  int after = radix_tree_delta(RADIX_TREE_KEYS_ARG n, last, last + 1);
+  RadixTreeParent p;
+  p.left_side = after > before;
+  p.split = uint(p.left_side ? last : first - 1);
+  p.prefix = max(before, after);
+  return p;
+}
+
+// The node index (Karras's layout above) of the node covering [first, last]: a second child is
+// numbered by its first position, a first child by its last, the root 0, a leaf n - 1 + position.
+SST_FUNC uint radix_tree_index(int n, int first, int last, bool left_side) {
+  if (first == last) return uint(n - 1 + first);
+  if (first == 0 && last == n - 1) return 0u;
+  return uint(left_side ? last : first);
+}
+
 SST_END
 
 #endif  // SST_CORE_LIGHTTREE_RADIX_TREE_NODE_H

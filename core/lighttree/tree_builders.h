@@ -15,24 +15,19 @@ namespace sst {
 struct LightTreeBuilder::Scratch {
   std::vector<uint64_t> keys;  // after sorting: ascending; sort_key_vpl(keys[i]) is the VPL at position i
   RadixSortScratch sort;
-  UninitializedVector<uint32_t> parents;  // radix: parent of every node (resize_uninitialized)
-  // radix: internal node i's children and the sorted positions [first, last] of its leaves, kept
-  // apart from the tree's nodes so that those are written once, by the merge.
-  struct Topology {
-    uint32_t left, right, first, last;
-  };
-  UninitializedVector<Topology> topology;
-  std::unique_ptr<std::atomic<uint32_t>[]> visits;  // radix: arrivals per internal node
-  size_t visits_size = 0;
+  // radix: per split position (internal node), the far end of the child that reached it first,
+  // plus one; 0 until then. All 0 between builds: each second arrival clears its slot.
+  std::unique_ptr<std::atomic<uint32_t>[]> meets;
+  size_t meets_size = 0;
 };
 
 // Keys of `vpls` over `vpl_bounds`, sorted into scratch.keys. Times the two stages into `stats`.
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
                LightTreeBuildStats& stats);
 
-// Karras 2012 over the sorted keys (needs sort_vpls first), then the bottom-up merge.
-void build_radix_hierarchy(LightTreeBuilder::Scratch& scratch, LightTree& tree);
-void merge_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
+// The radix tree of Karras 2012 over the sorted keys (needs sort_vpls first), found and merged in
+// one bottom-up pass (Apetrei 2014).
+void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
                       LightTree& tree);
 
 // Heap layout over the sorted VPLs (needs sort_vpls first), merged level by level.

@@ -6,6 +6,11 @@
 #include <algorithm>
 
 #include "core/lighttree/sort_key.h"
+
+#define RADIX_TREE_KEYS_PARAM const uint64_t* keys,
+#define RADIX_TREE_KEYS_ARG keys,
+#define RADIX_TREE_KEY(i) uvec2(uint32_t(keys[i]), uint32_t(keys[i] >> 32))
+#include "core/lighttree/radix_tree_node.h"
 #include "core/util/error.h"
 #include "tests/core/lighttree/lighttree_test_util.h"
 
@@ -321,6 +326,34 @@ TEST(LightTreeParamsTest, BadValuesNameTheParameter) {
   EXPECT_FLOAT_EQ(q.v_min, 0.7f);
   EXPECT_EQ(params_to_json(q)["sigma_max_relative_to"], "vpl_bounds");
   EXPECT_THROW(params_from_json(q, nlohmann::json{{"vmin", 0.7}}, "test"), Error);
+}
+
+// The CPU's climbs find the topology bottom-up; the nodes must still be numbered as Karras's
+// top-down formula (radix_tree_node) numbers them, which the GPU build uses. Sizes span several
+// of the climbs' chunks (2048 leaves), so parents straddling chunk borders meet through the
+// atomic; one builder serves every size in turn, so what the meets leave behind is checked too.
+TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {
+  LightTreeBuilder builder;
+  LightTree tree;
+  for (size_t n : {2u, 3u, 2049u, 6001u, 40u, 6001u, 20000u}) {
+    SCOPED_TRACE(n);
+    VplSet vpls = test::random_vpls(n, uint32_t(70 + n));
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      builder.build(vpls, params_for("radix"), nullptr, tree);
+    }
+    std::vector<uint64_t> keys;
+    compute_sort_keys(vpls, compute_vpl_bounds(vpls), keys);
+    std::sort(keys.begin(), keys.end());
+    ASSERT_EQ(tree.nodes.size(), 2 * n - 1);
+    for (uint32_t i = 0; i + 1 < n; ++i) {
+      RadixTreeNode karras = radix_tree_node(keys.data(), int(n), int(i));
+      ASSERT_EQ(tree.nodes[i].left, karras.left) << i;
+      ASSERT_EQ(tree.nodes[i].right, karras.right) << i;
+      ASSERT_EQ(tree.nodes[i].vpl_count, karras.last - karras.first + 1) << i;
+    }
+    EXPECT_TRUE(test::same_bytes(tree.nodes, build_light_tree(vpls, params_for("radix")).nodes));
+  }
 }
 
 TEST(LightTreeStats, HeightAndStageTimes) {

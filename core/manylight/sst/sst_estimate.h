@@ -13,8 +13,37 @@ SST_BEGIN
 
 SST_CONSTANT float kSstTwoPi = 6.28318530717958647692f;
 
-// Whether the ray x + tR (t >= 0) meets the box (slab test).
-SST_FUNC bool sst_ray_hits_box(vec3 x, vec3 r, vec3 lo, vec3 hi) {
+// What M and G need of the shading point and the lobe, the same at every node of a walk: taken
+// once per walk instead of at each of its 30-odd weights.
+struct SstWalkBound {
+  bool glossy;
+  float diffuse_scale;  // diffuse lobe: luminance(diffuse) / pi
+  vec3 mirror;          // glossy lobe: wo mirrored about the shading normal, in world space
+  vec3 inv_mirror;      // 1 / mirror per axis, where mirror's component is not 0
+  float floor_value;    // glossy lobe: keeps every box above the surface reachable
+  float eps2;           // G's floor on the squared distance
+};
+
+// sp.brdf: the lobe's part (sst_lobe_brdf).
+SST_FUNC SstWalkBound sst_walk_bound(SST_IN(ShadingPoint) sp, bool glossy, float eps) {
+  SstWalkBound b;
+  b.glossy = glossy;
+  SST_PRECISE float diffuse_scale = luminance(sp.brdf.diffuse) * kInvPi;
+  b.diffuse_scale = diffuse_scale;
+  vec3 wo_world = to_world(sp.basis, sp.wo);
+  SST_PRECISE vec3 mirror = 2.0f * dot3(sp.basis.n, wo_world) * sp.basis.n - wo_world;
+  b.mirror = mirror;
+  for (int a = 0; a < 3; ++a) b.inv_mirror[a] = mirror[a] == 0.0f ? 0.0f : 1.0f / mirror[a];
+  SST_PRECISE float floor_value = 1e-3f * max(luminance(sp.brdf.f0), 1e-6f);
+  b.floor_value = floor_value;
+  // eps = 0 would divide by 0 at a box containing x: floored far below any scene scale.
+  SST_PRECISE float eps2 = max(eps * eps, 1e-30f);
+  b.eps2 = eps2;
+  return b;
+}
+
+// Whether the ray x + tR (t >= 0) meets the box (slab test); inv_r: 1 / R per axis.
+SST_FUNC bool sst_ray_hits_box(vec3 x, vec3 r, vec3 inv_r, vec3 lo, vec3 hi) {
   float t0 = 0.0f;
   float t1 = kInf;
   for (int a = 0; a < 3; ++a) {
@@ -22,9 +51,8 @@ SST_FUNC bool sst_ray_hits_box(vec3 x, vec3 r, vec3 lo, vec3 hi) {
       if (x[a] < lo[a] || x[a] > hi[a]) return false;
       continue;
     }
-    float inv = 1.0f / r[a];
-    SST_PRECISE float ta = (lo[a] - x[a]) * inv;
-    SST_PRECISE float tb = (hi[a] - x[a]) * inv;
+    SST_PRECISE float ta = (lo[a] - x[a]) * inv_r[a];
+    SST_PRECISE float tb = (hi[a] - x[a]) * inv_r[a];
     t0 = max(t0, min(ta, tb));
     t1 = min(t1, max(ta, tb));
     if (t0 > t1) return false;
@@ -34,8 +62,8 @@ SST_FUNC bool sst_ray_hits_box(vec3 x, vec3 r, vec3 lo, vec3 hi) {
 
 // The direction toward the box closest to the mirror direction R: R when it hits the box, else
 // toward the box point nearest to the ray (a cheap stand-in for the exact minimiser).
-SST_FUNC vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 lo, vec3 hi) {
-  if (sst_ray_hits_box(x, r, lo, hi)) return r;
+SST_FUNC vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 inv_r, vec3 lo, vec3 hi) {
+  if (sst_ray_hits_box(x, r, inv_r, lo, hi)) return r;
   SST_PRECISE vec3 to_center = box_center(lo, hi) - x;
   float t = max(0.0f, dot3(to_center, r));
   SST_PRECISE vec3 q = x + t * r;
@@ -46,34 +74,28 @@ SST_FUNC vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 lo, vec3 hi) {
 }
 
 // M: the lobe's BRDF bound times the cosine bound over the node's box (sp.brdf: the lobe's part).
-SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, bool glossy) {
+SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b) {
   float cos_bound = box_cos_bound_in_frame(node.bounds_lo, node.bounds_hi, sp.p, sp.basis);
   if (!(cos_bound > 0.0f)) return 0.0f;
-  if (!glossy) {
-    SST_PRECISE float m = luminance(sp.brdf.diffuse) * kInvPi * cos_bound;
+  if (!b.glossy) {
+    SST_PRECISE float m = b.diffuse_scale * cos_bound;
     return m;
   }
-  vec3 wo_world = to_world(sp.basis, sp.wo);
-  SST_PRECISE vec3 mirror = 2.0f * dot3(sp.basis.n, wo_world) * sp.basis.n - wo_world;
-  vec3 wi = to_local(sp.basis, sst_glossy_direction(sp.p, mirror, node.bounds_lo, node.bounds_hi));
+  vec3 wi = to_local(sp.basis, sst_glossy_direction(sp.p, b.mirror, b.inv_mirror, node.bounds_lo, node.bounds_hi));
   float f = luminance(brdf_eval(sp.brdf, sp.wo, wi));
-  // The floor keeps every box above the surface reachable.
-  SST_PRECISE float floor_value = 1e-3f * max(luminance(sp.brdf.f0), 1e-6f);
-  SST_PRECISE float with_floor = f + floor_value;
-  SST_PRECISE float m = (is_finite(f) ? with_floor : floor_value) * cos_bound;
+  SST_PRECISE float with_floor = f + b.floor_value;
+  SST_PRECISE float m = (is_finite(f) ? with_floor : b.floor_value) * cos_bound;
   return m;
 }
 
 // w = M * G * I, G = 1 / max(d^2, eps^2).
-SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, float eps, bool glossy) {
+SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b) {
   if (light_node_empty(node)) return 0.0f;
   float intensity = luminance(node.intensity);
   if (!(intensity > 0.0f)) return 0.0f;
-  float m = sst_material_bound(node, sp, glossy);
+  float m = sst_material_bound(node, sp, b);
   if (!(m > 0.0f)) return 0.0f;
-  // eps = 0 would divide by 0 at a box containing x: floored far below any scene scale.
-  SST_PRECISE float eps2 = max(eps * eps, 1e-30f);
-  float g = 1.0f / max(box_distance2_min(node.bounds_lo, node.bounds_hi, sp.p), eps2);
+  float g = 1.0f / max(box_distance2_min(node.bounds_lo, node.bounds_hi, sp.p), b.eps2);
   SST_PRECISE float w = m * g * intensity;
   return w;
 }
@@ -125,6 +147,7 @@ SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
   ShadingPoint lp = sp;
   if (sp.brdf.specular) lp.brdf = sst_lobe_brdf(sp.brdf, glossy);
   bool stop_at_suitable = !glossy && ML_PARAMS.sst_substitutes != 0u;
+  SstWalkBound bound = sst_walk_bound(lp, glossy, ML_PARAMS.sst_eps);
 
   TreeWalk walk = tree_walk_begin(ML_PARAMS.tree_root);
   for (uint step = 0u; step < ML_PARAMS.tree_node_count && walk.node != kNoNode; ++step) {
@@ -147,8 +170,7 @@ SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
       e.value = divide_by_probability(c, tree_probability_times(walk.probability, p_lobe));
       break;
     }
-    vec2 w = vec2(sst_node_weight(ML_NODE(node.left), lp, ML_PARAMS.sst_eps, glossy),
-                  sst_node_weight(ML_NODE(node.right), lp, ML_PARAMS.sst_eps, glossy));
+    vec2 w = vec2(sst_node_weight(ML_NODE(node.left), lp, bound), sst_node_weight(ML_NODE(node.right), lp, bound));
     tree_walk_step(walk, node, w, ps);
   }
   e.nodes_visited = walk.nodes_visited;

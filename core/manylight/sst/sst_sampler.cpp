@@ -16,9 +16,9 @@ void validate(const SstParams& p) {
 }
 
 ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe) {
-  bool glossy = lobe == SstLobe::glossy;
-  return [&point, eps, glossy](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
-    return {sst_node_weight(l, point, eps, glossy), sst_node_weight(r, point, eps, glossy)};
+  SstWalkBound bound = sst_walk_bound(point, lobe == SstLobe::glossy, eps);
+  return [&point, bound](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
+    return {sst_node_weight(l, point, bound), sst_node_weight(r, point, bound)};
   };
 }
 

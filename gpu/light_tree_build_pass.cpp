@@ -4,6 +4,7 @@
 #include <bit>
 #include <chrono>
 #include <cstdint>
+#include <cstring>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,7 +63,6 @@ GpuLightTreeBuilder::GpuLightTreeBuilder(const VulkanContext& context) : context
   histogram_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_histogram", 2, push);
   scan_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_scan", 2, push);
   scatter_ = std::make_unique<ComputePipeline>(context, "light_tree_sort_scatter", 6, push);
-  hierarchy_ = std::make_unique<ComputePipeline>(context, "light_tree_hierarchy", 4, push);
   merge_ = std::make_unique<ComputePipeline>(context, "light_tree_merge", 5, push);
   perfect_leaves_ = std::make_unique<ComputePipeline>(context, "light_tree_perfect_leaves", 3, push);
   perfect_merge_ = std::make_unique<ComputePipeline>(context, "light_tree_perfect_merge", 1, push);
@@ -97,7 +97,7 @@ GpuLightTreeBuilder::Sorted GpuLightTreeBuilder::sort(const GpuBuffer& vpls, gls
   return out;
 }
 
-// merge_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1).
+// build_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1).
 void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,
                                       LightTree& tree, LightTreeBuildStats& stats) {
   const uint32_t n = push.count, node_count = 2 * n - 1;
@@ -105,18 +105,13 @@ void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorte
   tree.first_leaf = n - 1;
   tree.leaf_count = n;
   auto nodes = buffer(context_, size_t(node_count) * sizeof(LightNode), "nodes");
-  auto parents = buffer(context_, size_t(node_count) * 4, "parents");
-  auto visits = buffer(context_, size_t(std::max(n - 1, 1u)) * 4, "arrival counters");
-  static_cast<uint32_t*>(parents->data())[0] = kNoNode;  // the root's
+  auto meets = buffer(context_, size_t(std::max(n - 1, 1u)) * 4, "meets");
+  std::memset(meets->data(), 0, size_t(std::max(n - 1, 1u)) * 4);
   push.first_leaf = n - 1;
-  push.count = n - 1;
-  if (n > 1)
-    stats.hierarchy_ms = run(*hierarchy_, {sorted.keys.get(), nodes.get(), parents.get(), visits.get()}, push, n - 1);
-  push.count = n;
-  // The merge runs one invocation per workgroup (see light_tree_merge.comp for why).
+  // One invocation per workgroup (see light_tree_merge.comp for why).
   auto [mx, my] = std::pair<uint32_t, uint32_t>{std::min(n, kMaxGroupsX), (n + kMaxGroupsX - 1) / kMaxGroupsX};
   stats.merge_ms =
-      merge_->dispatch({&vpls, sorted.ids.get(), parents.get(), visits.get(), nodes.get()}, &push, mx, my);
+      merge_->dispatch({&vpls, sorted.ids.get(), sorted.keys.get(), meets.get(), nodes.get()}, &push, mx, my);
   resize_uninitialized(tree.nodes, node_count, /*huge_pages=*/false);
   nodes->download(std::span<LightNode>(tree.nodes));
 }

@@ -7,9 +7,8 @@
 //   radix sort                  5 passes of 8 bits over key bits [25, 64), as the CPU: each
 //                               light_tree_sort_histogram / _scan / _scatter (stable)
 // then, for "radix" (radix_tree_builder.cpp):
-//   Karras hierarchy            light_tree_hierarchy.comp (one invocation per internal node)
-//   merge                       light_tree_merge.comp (one per leaf, one per workgroup: a lavapipe
-//                               bug, see there; atomic arrival counters)
+//   topology and merge          light_tree_merge.comp (one per leaf, one per workgroup: a lavapipe
+//                               bug, see there; the climbs meet through atomic exchanges)
 // or, for "perfect" (perfect_tree_builder.cpp; no topology to build, the heap's):
 //   leaves                      light_tree_perfect_leaves.comp (one invocation per leaf [L, 2L))
 //   merge                       light_tree_perfect_merge.comp, one dispatch per level bottom-up
@@ -50,15 +49,15 @@ class GpuLightTreeBuilder {
                      LightTreeBuildStats& stats);
 
   const VulkanContext& context_;
-  std::unique_ptr<ComputePipeline> keys_, histogram_, scan_, scatter_, hierarchy_, merge_;
+  std::unique_ptr<ComputePipeline> keys_, histogram_, scan_, scatter_, merge_;
   std::unique_ptr<ComputePipeline> perfect_leaves_, perfect_merge_;
 };
 
 // build_light_tree(vpls, params, scene_bounds) on the GPU. Throws sst::Error as the CPU does (bad
 // parameters, too many VPLs, a bad VPL), and for tree "agglomerative" (built on the CPU only).
-// `stats`: bounds_ms is host wall time; keys_ms, sort_ms, hierarchy_ms and merge_ms are the GPU
-// times of those passes (timestamps; a perfect tree's leaves and levels are merge_ms, as on the
-// CPU); total_ms is the wall time of the whole call, uploads and downloads included. `gpu_ms`
+// `stats`: bounds_ms is host wall time; keys_ms, sort_ms and merge_ms are the GPU times of those
+// passes (timestamps; a perfect tree's leaves and levels are merge_ms, as on the CPU; hierarchy_ms
+// is 0, as on the CPU); total_ms is the wall time of the whole call, uploads and downloads included. `gpu_ms`
 // (optional): the GPU time of all passes.
 LightTree build_light_tree_gpu(const VulkanContext& context, const VplSet& vpls, const LightTreeParams& params,
                                const Bounds3* scene_bounds = nullptr, LightTreeBuildStats* stats = nullptr,

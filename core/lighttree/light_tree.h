@@ -83,8 +83,8 @@ struct LightTreeBuildStats {
   double bounds_ms = 0.0;     // VPL bounds and input checks
   double keys_ms = 0.0;       // sort keys
   double sort_ms = 0.0;       // radix sort
-  double hierarchy_ms = 0.0;  // topology apart from the merge: the agglomerative pairing, the GPU's radix
-                              // node ranges (0 for the CPU's radix tree, whose merge finds them)
+  double hierarchy_ms = 0.0;  // the agglomerative pairing (0 for radix and perfect trees, whose merge
+                              // finds or needs no topology)
   double merge_ms = 0.0;      // bottom-up leaves, intensities, boxes and SST substitutes
   double total_ms = 0.0;
 };

@@ -1,8 +1,10 @@
-// One internal node of the binary radix tree over sorted, unique keys (Karras 2012, "Maximizing
-// parallelism in the construction of BVHs, octrees, and k-d trees", Figure 4): the SST paper's
-// light-tree topology (§3.3). Node i's children and the range of sorted leaves it covers depend
-// only on the keys, so every node is computed independently, by a oneTBB loop on the CPU and one
-// invocation each on the GPU (shared C++/GLSL source, core/math/cpu_gpu.h).
+// The binary radix tree over sorted, unique keys (Karras 2012, "Maximizing parallelism in the
+// construction of BVHs, octrees, and k-d trees", Figure 4): the SST paper's light-tree topology
+// (§3.3). Every node's children and the range of sorted leaves it covers depend only on the keys.
+// radix_tree_node computes one internal node top-down, as Karras numbers them; both backends'
+// builders find the same nodes bottom-up instead (radix_tree_parent and radix_tree_index below),
+// while they merge, and the tests hold them to radix_tree_node's numbering (shared C++/GLSL
+// source, core/math/cpu_gpu.h).
 //
 // Node layout of n keys: internal nodes [0, n-1), root 0; leaf k is node n-1+k.
 //

@@ -6,11 +6,17 @@
 # and its accel built (load, accel_build and write are left out: no method changes them).
 #   tests/benchmarks/before_after.sh BEFORE_BUILD_DIR AFTER_BUILD_DIR [ROUNDS]
 # Run on an otherwise idle machine. Scene: SST_SCENE_DIR (default /work/shared/scenes).
+# METHODS (default: all of them) chooses methods. FRAMES=N (default 1) renders N-frame sequences
+# instead of single frames: each stage is then the median over the frames, which leaves out the
+# first frame's page faults (a renderer's steady state: storage reused across frames).
 set -euo pipefail
 before=${1:?before build dir}; after=${2:?after build dir}; rounds=${3:-3}
 scene=${SST_SCENE_DIR:-/work/shared/scenes}/breakfast-room/breakfast-room-point.gltf
 [ -f "$scene" ] || { echo "error: $scene not found (set SST_SCENE_DIR)" >&2; exit 1; }
-methods="pt exhaustive uniform slc sst rtslc hybrid gi10"
+methods=${METHODS:-"pt exhaustive uniform slc sst rtslc hybrid gi10"}
+frames=${FRAMES:-1}
+sequence=()
+[ "$frames" -gt 1 ] && sequence=(--frames "$frames" --no-preview)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for r in $(seq "$rounds"); do
@@ -25,7 +31,7 @@ for r in $(seq "$rounds"); do
         gi10) extra=() ;;
         exhaustive) extra=(--vpls 1000) ;;
       esac
-      "$dir/sst-render" "$scene" --method $m "${extra[@]}" --spp 4 --width 256 --threads 2 -q \
+      "$dir/sst-render" "$scene" --method $m "${extra[@]}" "${sequence[@]}" --spp 4 --width 256 --threads 2 -q \
         -o "$out/$b-$m-$r.exr" --json "$out/$b-$m-$r.json" > /dev/null
     done
   done

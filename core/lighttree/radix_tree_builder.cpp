@@ -47,7 +47,10 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   if (scratch.meets_size < internal) {
     scratch.meets = std::make_unique<std::atomic<uint32_t>[]>(internal);  // zeroed
     scratch.meets_size = internal;
+  } else if (!scratch.meets_clean) {
+    for (size_t i = 0; i < scratch.meets_size; ++i) scratch.meets[i].store(0, std::memory_order_relaxed);
   }
+  scratch.meets_clean = false;
   std::atomic<uint32_t>* meets = scratch.meets.get();
   LightNode* nodes = tree.nodes.data();
   const uint64_t* keys = scratch.keys.data();
@@ -102,6 +105,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
       }
     }
   }, tbb::simple_partitioner());
+  scratch.meets_clean = true;
 }
 
 }  // namespace sst

@@ -16,9 +16,11 @@ struct LightTreeBuilder::Scratch {
   std::vector<uint64_t> keys;  // after sorting: ascending; sort_key_vpl(keys[i]) is the VPL at position i
   RadixSortScratch sort;
   // radix: per split position (internal node), the far end of the child that reached it first,
-  // plus one; 0 until then. All 0 between builds: each second arrival clears its slot.
+  // plus one; 0 until then. All 0 after a build: each second arrival clears its slot. A build cut
+  // short (an exception) leaves meets_clean false, and the next build clears them all first.
   std::unique_ptr<std::atomic<uint32_t>[]> meets;
   size_t meets_size = 0;
+  bool meets_clean = true;
 };
 
 // Keys of `vpls` over `vpl_bounds`, sorted into scratch.keys. Times the two stages into `stats`.

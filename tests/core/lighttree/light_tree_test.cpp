@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "core/lighttree/sort_key.h"
+#include "core/lighttree/tree_builders.h"
 
 #define RADIX_TREE_KEYS_PARAM const uint64_t* keys,
 #define RADIX_TREE_KEYS_ARG keys,
@@ -354,6 +355,25 @@ TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {
     }
     EXPECT_TRUE(test::same_bytes(tree.nodes, build_light_tree(vpls, params_for("radix")).nodes));
   }
+}
+
+// A build cut short (an exception inside it) leaves meeting slots set; the next build must not
+// read them as arrivals.
+TEST(LightTreeRadix, ABuildAfterOneCutShortClearsTheMeetingSlots) {
+  VplSet vpls = test::random_vpls(5000, 81);
+  LightTreeBuilder::Scratch scratch;
+  LightTreeBuildStats stats;
+  sort_vpls(vpls, compute_vpl_bounds(vpls), scratch, stats);
+  SubstituteThresholds thresholds{0.5f, 1.0f};
+  LightTree tree;
+  build_radix_tree(vpls, thresholds, scratch, tree);
+  UninitializedVector<LightNode> fresh = tree.nodes;
+  ASSERT_GE(scratch.meets_size, 4999u);
+  for (size_t i = 0; i < scratch.meets_size; ++i) scratch.meets[i].store(uint32_t(i % 7), std::memory_order_relaxed);
+  scratch.meets_clean = false;
+  build_radix_tree(vpls, thresholds, scratch, tree);
+  EXPECT_TRUE(test::same_bytes(tree.nodes, fresh));
+  EXPECT_TRUE(scratch.meets_clean);
 }
 
 TEST(LightTreeStats, HeightAndStageTimes) {

@@ -105,8 +105,9 @@ void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorte
   tree.first_leaf = n - 1;
   tree.leaf_count = n;
   auto nodes = buffer(context_, size_t(node_count) * sizeof(LightNode), "nodes");
-  auto meets = buffer(context_, size_t(std::max(n - 1, 1u)) * 4, "meets");
-  std::memset(meets->data(), 0, size_t(std::max(n - 1, 1u)) * 4);
+  const size_t meet_bytes = size_t(std::max(n - 1, 1u)) * 4;
+  auto meets = buffer(context_, meet_bytes, "meets");
+  std::memset(meets->data(), 0, meet_bytes);
   push.first_leaf = n - 1;
   // One invocation per workgroup (see light_tree_merge.comp for why).
   auto [mx, my] = std::pair<uint32_t, uint32_t>{std::min(n, kMaxGroupsX), (n + kMaxGroupsX - 1) / kMaxGroupsX};

@@ -1,10 +1,10 @@
 // The binary radix tree over sorted, unique keys (Karras 2012, "Maximizing parallelism in the
 // construction of BVHs, octrees, and k-d trees", Figure 4): the SST paper's light-tree topology
-// (§3.3). Every node's children and the range of sorted leaves it covers depend only on the keys.
-// radix_tree_node computes one internal node top-down, as Karras numbers them; both backends'
-// builders find the same nodes bottom-up instead (radix_tree_parent and radix_tree_index below),
-// while they merge, and the tests hold them to radix_tree_node's numbering (shared C++/GLSL
-// source, core/math/cpu_gpu.h).
+// (§3.3), in shared C++/GLSL source (core/math/cpu_gpu.h). Every node's children and the range of
+// sorted leaves it covers depend only on the keys. radix_tree_node computes one internal node
+// top-down, as Karras numbers them: the definition the tests hold the builders to. Both backends'
+// builders find the same nodes bottom-up instead, while they merge (radix_tree_parent and
+// radix_tree_index below).
 //
 // Node layout of n keys: internal nodes [0, n-1), root 0; leaf k is node n-1+k.
 //

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 
@@ -354,6 +355,24 @@ TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {
       ASSERT_EQ(tree.nodes[i].vpl_count, karras.last - karras.first + 1) << i;
     }
     EXPECT_TRUE(test::same_bytes(tree.nodes, build_light_tree(vpls, params_for("radix")).nodes));
+  }
+}
+
+// More threads than cores interleave the climbs of neighbouring chunks in more ways: the parents
+// that straddle chunk borders, where the two arrivals meet through the atomic exchange.
+TEST(LightTreeRadix, EightThreadsBuildTheSameTreeAsOne) {
+  VplSet vpls = test::random_vpls(40000, 91);
+  LightTree one;
+  {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    one = build_light_tree(vpls, params_for("radix"));
+  }
+  tbb::global_control allow(tbb::global_control::max_allowed_parallelism, 8);  // above the core count
+  tbb::task_arena eight(8);
+  for (int round = 0; round < 3; ++round) {
+    LightTree many;
+    eight.execute([&] { many = build_light_tree(vpls, params_for("radix")); });
+    EXPECT_TRUE(test::same_bytes(one.nodes, many.nodes)) << round;
   }
 }
 

@@ -330,8 +330,8 @@ TEST(LightTreeParamsTest, BadValuesNameTheParameter) {
   EXPECT_THROW(params_from_json(q, nlohmann::json{{"vmin", 0.7}}, "test"), Error);
 }
 
-// The CPU's climbs find the topology bottom-up; the nodes must still be numbered as Karras's
-// top-down formula (radix_tree_node) numbers them, which the GPU build uses. Sizes span several
+// The climbs find the topology bottom-up; the nodes must still be numbered as Karras's top-down
+// formula (radix_tree_node) numbers them, the layout light_tree.h documents. Sizes span several
 // of the climbs' chunks (2048 leaves), so parents straddling chunk borders meet through the
 // atomic; one builder serves every size in turn, so what the meets leave behind is checked too.
 TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {

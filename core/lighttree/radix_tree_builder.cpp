@@ -30,7 +30,7 @@
 namespace sst {
 namespace {
 
-constexpr uint32_t kPrefetch = 16;
+constexpr int kPrefetch = 16;
 constexpr uint32_t kMergeChunk = 2048;
 
 }  // namespace
@@ -44,14 +44,13 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   tree.leaf_count = uint32_t(n);
   if (n == 0) return;
   const size_t internal = n - 1;
-  if (scratch.meets_size < internal) {
-    scratch.meets = std::make_unique<std::atomic<uint32_t>[]>(internal);  // zeroed
-    scratch.meets_size = internal;
+  if (scratch.meets.size() < internal) {
+    scratch.meets = std::vector<std::atomic<uint32_t>>(internal);  // zeroed
   } else if (!scratch.meets_clean) {
-    for (size_t i = 0; i < scratch.meets_size; ++i) scratch.meets[i].store(0, std::memory_order_relaxed);
+    for (std::atomic<uint32_t>& m : scratch.meets) m.store(0, std::memory_order_relaxed);
   }
   scratch.meets_clean = false;
-  std::atomic<uint32_t>* meets = scratch.meets.get();
+  std::atomic<uint32_t>* meets = scratch.meets.data();
   LightNode* nodes = tree.nodes.data();
   const uint64_t* keys = scratch.keys.data();
   const int count = int(n);
@@ -63,7 +62,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
     // Leaves first, as a loop of independent iterations: the VPLs are gathered in key order,
     // from scattered addresses, and the climbs below would stall on each of those loads.
     for (int i = chunk_begin; i != chunk_end; ++i) {
-      if (i + int(kPrefetch) < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
+      if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
       const uint32_t vpl = sort_key_vpl(keys[i]);
       nodes[first_leaf + uint32_t(i)] = make_leaf(vpls[vpl], vpl, thresholds);
     }
@@ -85,14 +84,13 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
             break;
           }
           other_end = meets[split].load(std::memory_order_relaxed);
-          meets[split].store(0, std::memory_order_relaxed);
         } else {
           // acq_rel makes the sibling's subtree visible to the second to arrive, and this
           // subtree to whoever arrives second above.
           other_end = meets[split].exchange(own_end, std::memory_order_acq_rel);
           if (other_end == 0) break;
-          meets[split].store(0, std::memory_order_relaxed);
         }
+        meets[split].store(0, std::memory_order_relaxed);  // ready for the next build
         if (up.left_side)
           last = int(other_end) - 1;
         else

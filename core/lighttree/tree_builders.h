@@ -3,7 +3,6 @@
 // thresholds, parameter checks) and times the stages.
 #pragma once
 #include <atomic>
-#include <memory>
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
@@ -18,8 +17,7 @@ struct LightTreeBuilder::Scratch {
   // radix: per split position (internal node), the far end of the child that reached it first,
   // plus one; 0 until then. All 0 after a build: each second arrival clears its slot. A build cut
   // short (an exception) leaves meets_clean false, and the next build clears them all first.
-  std::unique_ptr<std::atomic<uint32_t>[]> meets;
-  size_t meets_size = 0;
+  std::vector<std::atomic<uint32_t>> meets;
   bool meets_clean = true;
 };
 

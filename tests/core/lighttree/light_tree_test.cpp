@@ -387,8 +387,8 @@ TEST(LightTreeRadix, ABuildAfterOneCutShortClearsTheMeetingSlots) {
   LightTree tree;
   build_radix_tree(vpls, thresholds, scratch, tree);
   UninitializedVector<LightNode> fresh = tree.nodes;
-  ASSERT_GE(scratch.meets_size, 4999u);
-  for (size_t i = 0; i < scratch.meets_size; ++i) scratch.meets[i].store(uint32_t(i % 7), std::memory_order_relaxed);
+  ASSERT_GE(scratch.meets.size(), 4999u);
+  for (size_t i = 0; i < scratch.meets.size(); ++i) scratch.meets[i].store(uint32_t(i % 7), std::memory_order_relaxed);
   scratch.meets_clean = false;
   build_radix_tree(vpls, thresholds, scratch, tree);
   EXPECT_TRUE(test::same_bytes(tree.nodes, fresh));

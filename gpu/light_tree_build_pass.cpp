@@ -97,14 +97,14 @@ GpuLightTreeBuilder::Sorted GpuLightTreeBuilder::sort(const GpuBuffer& vpls, gls
   return out;
 }
 
-// build_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1).
+// build_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1) (not stored).
 void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,
                                       LightTree& tree, LightTreeBuildStats& stats) {
-  const uint32_t n = push.count, node_count = 2 * n - 1;
+  const uint32_t n = push.count, node_count = n - 1;
   tree.root = 0;
   tree.first_leaf = n - 1;
   tree.leaf_count = n;
-  auto nodes = buffer(context_, size_t(node_count) * sizeof(LightNode), "nodes");
+  auto nodes = buffer(context_, size_t(std::max(node_count, 1u)) * sizeof(LightNode), "nodes");
   const size_t meet_bytes = size_t(std::max(n - 1, 1u)) * 4;
   auto meets = buffer(context_, meet_bytes, "meets");
   std::memset(meets->data(), 0, meet_bytes);
@@ -117,23 +117,24 @@ void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorte
   nodes->download(std::span<LightNode>(tree.nodes));
 }
 
-// build_perfect_tree's heap: node 0 unused, root 1, leaves [L, 2L). The leaves in one pass, then
-// one pass per level, bottom-up (the CPU's subtree blocking only orders the same merges).
+// build_perfect_tree's heap: node 0 unused, root 1, leaves [L, 2L) (not stored). The level above
+// the leaves in one pass, then one pass per level, bottom-up (the CPU's subtree blocking only
+// orders the same merges).
 void GpuLightTreeBuilder::build_perfect(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,
                                         LightTree& tree, LightTreeBuildStats& stats) {
   const uint32_t leaves = std::bit_ceil(push.count);
   tree.root = 1;
   tree.first_leaf = leaves;
   tree.leaf_count = leaves;
-  auto nodes = buffer(context_, 2 * size_t(leaves) * sizeof(LightNode), "nodes");
+  auto nodes = buffer(context_, size_t(leaves) * sizeof(LightNode), "nodes");
   push.first_leaf = leaves;
-  stats.merge_ms = run(*perfect_leaves_, {&vpls, sorted.ids.get(), nodes.get()}, push, leaves);
-  for (uint32_t level = leaves / 2; level >= 1; level /= 2) {
+  stats.merge_ms = run(*perfect_leaves_, {&vpls, sorted.ids.get(), nodes.get()}, push, std::max(leaves / 2, 1u));
+  for (uint32_t level = leaves / 4; level >= 1; level /= 2) {
     push.first_leaf = level;
     push.count = level;
     stats.merge_ms += run(*perfect_merge_, {nodes.get()}, push, level);
   }
-  resize_uninitialized(tree.nodes, 2 * size_t(leaves), /*huge_pages=*/false);
+  resize_uninitialized(tree.nodes, leaves, /*huge_pages=*/false);
   nodes->download(std::span<LightNode>(tree.nodes));
 }
 
@@ -152,6 +153,7 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
   const uint32_t n = uint32_t(vpls.size());
   LightTree tree;
   tree.kind = params.tree;
+  tree.vpls = vpls;
   tree.vpl_count = n;
   tree.vpl_bounds = bounds;
   tree.length_scale = length_scale(params, bounds, scene_bounds);
@@ -175,6 +177,8 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
       build_radix(*gpu_vpls, sorted, push, tree, stats);
     else
       build_perfect(*gpu_vpls, sorted, push, tree, stats);
+    tree.leaf_keys.resize(n);  // uvec2 keys: a uint64_t's bytes (light_tree_build_layout.h)
+    sorted.keys->download(std::span<uint64_t>(tree.leaf_keys));
     gpu_total = stats.keys_ms + stats.sort_ms + stats.hierarchy_ms + stats.merge_ms;
   }
   stats.total_ms = ms_since(start);

@@ -37,6 +37,9 @@ class GpuLightTreeBuilder {
   // What build_light_tree_gpu does (see there).
   LightTree build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,
                   LightTreeBuildStats* stats = nullptr, double* gpu_ms = nullptr);
+  // The tree's leaves are the VPLs (LightTree::vpls): a temporary set would leave it dangling.
+  LightTree build(VplSet&&, const LightTreeParams&, const Bounds3* = nullptr, LightTreeBuildStats* = nullptr,
+                  double* = nullptr) = delete;
 
  private:
   struct Sorted {

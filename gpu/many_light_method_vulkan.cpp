@@ -57,7 +57,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   frame.method_counters["gpu_ms"] = {{"vpl_generation", vpl_gpu_ms}, {"sampling", out.gpu_ms}};
   frame.method_counters["gpu"] = {{"sampling_dispatches", out.dispatches}};
   nlohmann::json built_on = {{"vpls", "gpu"}, {"sampling", "gpu"}};
-  if (!in.nodes.empty()) built_on["tree"] = frame.method_counters["tree"].value("built_on", "cpu");
+  if (in.tree) built_on["tree"] = frame.method_counters["tree"].value("built_on", "cpu");
   if (!in.cut_nodes.empty()) built_on["cuts"] = "cpu";
   frame.method_counters["built_on"] = built_on;
   return frame;

@@ -192,20 +192,21 @@ void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& th
   if (n > kMaxAgglomerativeVpls)
     throw Error("light tree: tree 'agglomerative' is O(n^2) and limited to " + std::to_string(kMaxAgglomerativeVpls) +
                 " VPLs, got " + std::to_string(n) + " (use tree 'radix' or 'perfect')");
-  resize_uninitialized(tree.nodes, n == 0 ? 0 : 2 * n - 1, /*huge_pages=*/false);
+  set_leaf_source(vpls, thresholds, tree);
+  resize_uninitialized(tree.nodes, n == 0 ? 0 : n - 1, /*huge_pages=*/false);
+  tree.leaf_keys.resize(n);
+  for (uint32_t i = 0; i < n; ++i) tree.leaf_keys[i] = i;  // leaf i is VPL i
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
-  if (n == 0) return;
+  if (n <= 1) return;
   // Cluster ids: VPL i is cluster i; the merge that makes cluster n + s is the s-th. Node
   // indices put the last merge (the root) at 0 and leaf i at n-1+i.
   auto node_of = [n](uint32_t cluster) { return cluster < n ? uint32_t(n - 1 + cluster) : uint32_t(2 * n - 2 - cluster); };
-  for (uint32_t i = 0; i < n; ++i) tree.nodes[n - 1 + i] = make_leaf(vpls[i], i, thresholds);
-  if (n == 1) return;
   Clustering clustering(vpls, length_scale, weight_floor(vpls));
   clustering.run([&](uint32_t id, uint32_t a, uint32_t b) {
     uint32_t na = node_of(a), nb = node_of(b);
-    tree.nodes[node_of(id)] = merge_children(tree.nodes[na], na, tree.nodes[nb], nb, thresholds);
+    tree.nodes[node_of(id)] = merge_children(tree.node(na), na, tree.node(nb), nb, thresholds);
   });
 }
 

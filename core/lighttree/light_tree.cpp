@@ -48,13 +48,13 @@ void validate(const LightTreeParams& params) {
     throw Error("light tree: sigma_max_relative_to '" + params.sigma_max_relative_to + "' is not vpl_bounds or scene_bounds");
 }
 
-void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
+void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch, LightTree& tree,
                LightTreeBuildStats& stats) {
-  timed(stats.keys_ms, [&] { compute_sort_keys(vpls, vpl_bounds, scratch.keys); });
+  timed(stats.keys_ms, [&] { compute_sort_keys(vpls, vpl_bounds, tree.leaf_keys); });
   // The id bits are already ascending in input order and the sort is stable: sorting only the
   // Morton and normal bits gives the full keys' order, with 5 passes instead of 8. The keys carry
   // their VPL (sort_key_vpl), so no index array travels with them.
-  timed(stats.sort_ms, [&] { radix_sort_keys(scratch.keys, scratch.sort, kIdBits, 64); });
+  timed(stats.sort_ms, [&] { radix_sort_keys(tree.leaf_keys, scratch.sort, kIdBits, 64); });
 }
 
 LightTreeBuilder::LightTreeBuilder() : scratch_(std::make_unique<Scratch>()) {}
@@ -85,11 +85,11 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   if (params.tree == "agglomerative") {
     timed(stats.hierarchy_ms, [&] { build_agglomerative_tree(vpls, thresholds, tree.length_scale, tree); });
   } else {
-    sort_vpls(vpls, bounds, *scratch_, stats);
+    sort_vpls(vpls, bounds, *scratch_, tree, stats);
     if (params.tree == "radix") {
       timed(stats.merge_ms, [&] { build_radix_tree(vpls, thresholds, *scratch_, tree); });
     } else {
-      timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, *scratch_, tree); });
+      timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, tree); });
     }
   }
   stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -111,8 +111,8 @@ uint32_t tree_height(const LightTree& tree) {
     auto [node, depth] = stack.back();
     stack.pop_back();
     height = std::max(height, depth);
+    if (node >= tree.first_leaf) continue;
     const LightNode& n = tree.nodes[node];
-    if (n.is_leaf()) continue;
     stack.push_back({n.left, depth + 1});
     stack.push_back({n.right, depth + 1});
   }
@@ -124,9 +124,10 @@ size_t count_suitable_internal(const LightTree& tree) {
   size_t count = 0;
   std::vector<uint32_t> stack{tree.root};
   while (!stack.empty()) {
-    const LightNode& n = tree.nodes[stack.back()];
+    const uint32_t node = stack.back();
     stack.pop_back();
-    if (n.is_leaf()) continue;
+    if (node >= tree.first_leaf) continue;
+    const LightNode& n = tree.nodes[node];
     if (n.suitable()) ++count;
     stack.push_back(n.left);
     stack.push_back(n.right);

@@ -16,11 +16,14 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 #include "core/lighttree/light_node.h"
+#include "core/lighttree/sort_key.h"
+#include "core/lighttree/substitute.h"
 #include "core/math/math.h"
 #include "core/util/memory.h"
 #include "core/util/params.h"
@@ -36,9 +39,18 @@ namespace sst {
 //   2i+1, leaves [L, 2L) with L = the power of two >= n: VPLs in sort-key order, then padding
 //   leaves (zero intensity, empty box, VPL index kNoNode). The nodes of level l are
 //   [2^l, 2^(l+1)).
+//
+// Only the nodes below first_leaf are stored. A leaf holds nothing its VPL does not (make_leaf,
+// substitute.h), so node() makes it from the VPL when it is read: a tree costs 96 bytes a VPL
+// instead of 192.
 struct LightTree {
   std::string kind;  // the builder: radix, perfect, agglomerative
-  UninitializedVector<LightNode> nodes;  // builders: resize_uninitialized, then write every node
+  UninitializedVector<LightNode> nodes;  // [0, first_leaf); builders: resize_uninitialized, then write every node
+  // Leaf i's sort key, for i < vpl_count (radix, perfect: ascending; agglomerative: i);
+  // sort_key_vpl(leaf_keys[i]) is its VPL. Leaves past vpl_count are perfect trees' padding.
+  std::vector<uint64_t> leaf_keys;
+  // The VPLs it was built over; they must outlive every use of the tree, whose leaves they are.
+  std::span<const Vpl> vpls;
   uint32_t root = kNoNode;  // kNoNode for an empty VPL set
   uint32_t first_leaf = 0;
   uint32_t leaf_count = 0;  // including padding leaves
@@ -49,7 +61,21 @@ struct LightTree {
   float sigma_max_abs = 0.0f; // sigma_max * D, in scene units
 
   bool empty() const { return root == kNoNode; }
-  const LightNode& operator[](uint32_t i) const { return nodes[i]; }
+  // Stored and made nodes together: first_leaf + leaf_count.
+  uint32_t node_count() const { return empty() ? 0 : first_leaf + leaf_count; }
+  // Node i < node_count(), stored or made from its VPL.
+  LightNode node(uint32_t i) const {
+    if (i < first_leaf) return nodes[i];
+    return leaf(i - first_leaf);
+  }
+  // Leaf first_leaf + position: its VPL's, or a padding leaf past the VPLs.
+  LightNode leaf(uint32_t position) const {
+    const SubstituteThresholds thresholds{v_min, sigma_max_abs};
+    if (position >= vpl_count) return make_padding_leaf(thresholds);
+    const uint32_t vpl = sort_key_vpl(leaf_keys[position]);
+    return make_leaf(vpls[vpl], vpl, thresholds);
+  }
+  LightNode operator[](uint32_t i) const { return node(i); }
 };
 
 struct LightTreeParams {
@@ -103,6 +129,8 @@ class LightTreeBuilder {
   // or a bad VPL, before `tree` is touched.
   void build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds, LightTree& tree,
              LightTreeBuildStats* stats = nullptr);
+  // The tree's leaves are the VPLs (LightTree::vpls): a temporary set would leave it dangling.
+  void build(VplSet&&, const LightTreeParams&, const Bounds3*, LightTree&, LightTreeBuildStats* = nullptr) = delete;
 
   struct Scratch;
 
@@ -113,6 +141,8 @@ class LightTreeBuilder {
 // The one factory: a tree over `vpls` by params.tree.
 LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,
                            LightTreeBuildStats* stats = nullptr);
+LightTree build_light_tree(VplSet&&, const LightTreeParams&, const Bounds3* = nullptr,
+                           LightTreeBuildStats* = nullptr) = delete;  // see LightTreeBuilder::build
 
 // Longest root-to-leaf path in edges (0 for a single leaf); for reports and tests.
 uint32_t tree_height(const LightTree& tree);

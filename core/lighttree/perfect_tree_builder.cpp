@@ -14,32 +14,30 @@ namespace sst {
 namespace {
 
 constexpr size_t kGrain = 1024;
-constexpr size_t kPrefetch = 16;
-// Leaves of one task's subtree: its nodes (2 x 96 bytes a leaf) stay in the core's cache from
-// the leaves up to the subtree's root, where a level-by-level pass over the whole array would
-// stream it through memory once per level.
+constexpr uint32_t kPrefetch = 8;
+// Leaves of one task's subtree: its nodes stay in the core's cache from the leaves up to the
+// subtree's root, where a level-by-level pass over the whole array would stream it through
+// memory once per level.
 constexpr uint32_t kSubtreeLeaves = 2048;
 
-void fill_leaves(const VplSet& vpls, const uint64_t* keys, size_t n, uint32_t begin, uint32_t end,
-                 const SubstituteThresholds& thresholds, LightNode* leaves) {
-  for (size_t i = begin; i != end; ++i) {
-    // The VPLs are gathered in key order, i.e. from scattered addresses: fetch ahead.
-    if (i + kPrefetch < n) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
-    leaves[i] = i < n ? make_leaf(vpls[sort_key_vpl(keys[i])], sort_key_vpl(keys[i]), thresholds)
-                      : make_padding_leaf(thresholds);
+void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thresholds, LightTree& tree) {
+  const bool above_leaves = 2 * begin >= tree.first_leaf;
+  for (uint32_t i = begin; i != end; ++i) {
+    // Above the leaves the VPLs are read in key order, from scattered addresses: fetch ahead.
+    const uint32_t ahead = 2 * (i + kPrefetch) - tree.first_leaf;
+    if (above_leaves && i + kPrefetch < end && ahead + 1 < tree.vpl_count) {
+      __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[ahead])]);
+      __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[ahead + 1])]);
+    }
+    tree.nodes[i] = merge_children(tree.node(2 * i), 2 * i, tree.node(2 * i + 1), 2 * i + 1, thresholds);
   }
-}
-
-void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thresholds, LightNode* nodes) {
-  for (uint32_t i = begin; i != end; ++i)
-    nodes[i] = merge_children(nodes[2 * i], 2 * i, nodes[2 * i + 1], 2 * i + 1, thresholds);
 }
 
 }  // namespace
 
-void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds,
-                        const LightTreeBuilder::Scratch& scratch, LightTree& tree) {
-  const size_t n = scratch.keys.size();
+void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTree& tree) {
+  const size_t n = tree.leaf_keys.size();
+  set_leaf_source(vpls, thresholds, tree);
   if (n == 0) {
     tree.nodes.clear();
     tree.root = kNoNode;
@@ -47,24 +45,22 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
     return;
   }
   const uint32_t leaves = std::bit_ceil(uint32_t(n));
-  resize_uninitialized(tree.nodes, 2 * size_t(leaves), /*huge_pages=*/false);
+  resize_uninitialized(tree.nodes, leaves, /*huge_pages=*/false);
   tree.root = 1;
   tree.first_leaf = leaves;
   tree.leaf_count = leaves;
-  LightNode* nodes = tree.nodes.data();
-  nodes[0] = make_padding_leaf(thresholds);  // unused: keeps the heap's 1-based indices
+  tree.nodes[0] = make_padding_leaf(thresholds);  // unused: keeps the heap's 1-based indices
   // Subtrees of `sub` leaves in parallel, each from its leaves up to its root (subtree k's
   // nodes of one level are consecutive: [(leaves + k sub) / 2^l, + sub / 2^l)) ...
   const uint32_t sub = std::min(leaves, kSubtreeLeaves), subtrees = leaves / sub;
   tbb::parallel_for(uint32_t(0), subtrees, [&](uint32_t k) {
-    fill_leaves(vpls, scratch.keys.data(), n, k * sub, (k + 1) * sub, thresholds, nodes + leaves);
     for (uint32_t first = (leaves + k * sub) / 2, width = sub / 2; width >= 1; first /= 2, width /= 2)
-      merge_range(first, first + width, thresholds, nodes);
+      merge_range(first, first + width, thresholds, tree);
   });
   // ... then the few levels above them, [1, subtrees), level by level.
   for (uint32_t level = subtrees / 2; level >= 1; level /= 2) {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(level, 2 * level, kGrain),
-                      [&](const tbb::blocked_range<uint32_t>& r) { merge_range(r.begin(), r.end(), thresholds, nodes); });
+                      [&](const tbb::blocked_range<uint32_t>& r) { merge_range(r.begin(), r.end(), thresholds, tree); });
   }
 }
 

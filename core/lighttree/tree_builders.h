@@ -1,8 +1,7 @@
 // The builders behind build_light_tree(), for light_tree.cpp and the benchmark. Each fills
-// `tree.nodes`, `root`, `first_leaf` and `leaf_count`; light_tree.cpp does the rest (bounds,
-// thresholds, parameter checks) and times the stages.
+// `tree.nodes` (the internal nodes), `leaf_keys`, `root`, `first_leaf` and `leaf_count`;
+// light_tree.cpp does the rest (bounds, thresholds, VPLs, parameter checks) and times the stages.
 #pragma once
-#include <atomic>
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
@@ -12,27 +11,29 @@
 namespace sst {
 
 struct LightTreeBuilder::Scratch {
-  std::vector<uint64_t> keys;  // after sorting: ascending; sort_key_vpl(keys[i]) is the VPL at position i
-  RadixSortScratch sort;
-  // radix: per split position (internal node), the far end of the child that reached it first,
-  // plus one; 0 until then. All 0 after a build: each second arrival clears its slot. A build cut
-  // short (an exception) leaves meets_clean false, and the next build clears them all first.
-  std::vector<std::atomic<uint32_t>> meets;
-  bool meets_clean = true;
+  RadixSortScratch sort;  // radix: its spare key buffer holds the climbs' meeting slots after the sort
 };
 
-// Keys of `vpls` over `vpl_bounds`, sorted into scratch.keys. Times the two stages into `stats`.
-void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch,
+// What LightTree::node() makes the leaves from: the VPLs and the thresholds of their flags. Every
+// builder sets it first, so that its merges can read the leaves too.
+inline void set_leaf_source(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTree& tree) {
+  tree.vpls = vpls;
+  tree.vpl_count = uint32_t(vpls.size());
+  tree.v_min = thresholds.v_min;
+  tree.sigma_max_abs = thresholds.sigma_max_abs;
+}
+
+// Keys of `vpls` over `vpl_bounds`, sorted into tree.leaf_keys. Times the two stages into `stats`.
+void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch, LightTree& tree,
                LightTreeBuildStats& stats);
 
-// The radix tree of Karras 2012 over the sorted keys (needs sort_vpls first), found and merged in
+// The radix tree of Karras 2012 over tree.leaf_keys (needs sort_vpls first), found and merged in
 // one bottom-up pass (Apetrei 2014).
 void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
                       LightTree& tree);
 
 // Heap layout over the sorted VPLs (needs sort_vpls first), merged level by level.
-void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds,
-                        const LightTreeBuilder::Scratch& scratch, LightTree& tree);
+void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTree& tree);
 
 // Walter 2005 greedy pairing; O(n^2) time, so limited to kMaxAgglomerativeVpls.
 inline constexpr size_t kMaxAgglomerativeVpls = 20000;

@@ -8,7 +8,7 @@
 // Buffers, std430, in the order of MANY_LIGHT_BUFFERS(first) (and GpuManyLightInputs::buffers()):
 //   first + 0  SamplerParams ml_params        one element
 //   first + 1  GpuVpl        ml_vpls[]        VplSet, index for index
-//   first + 2  LightNode     ml_nodes[]       LightTree::nodes, index for index
+//   first + 2  LightNode     ml_nodes[]       LightTree::node(i) for every node, leaves included
 //   first + 3  uint          ml_cut_nodes[]   BlockCuts::nodes (block b: [b max_size, +sizes[b]))
 //   first + 4  uint          ml_cut_sizes[]   BlockCuts::sizes
 //   first + 5  CutGuide      ml_cut_guides[]  BlockCuts::guides
@@ -63,7 +63,7 @@ struct SamplerParams {
   float clamp_distance;  // VplLighting::clamp_distance
   uint tree_root;        // LightTree::root (tree samplers); kNoNode for an empty tree
   uint tree_first_leaf;  // LightTree::first_leaf
-  uint tree_node_count;  // ml_nodes[] length; 0: empty tree
+  uint tree_node_count;  // ml_nodes[] length, LightTree::node_count(); 0: empty tree
   // sst: eps = distance_floor * LightTree::length_scale (the float product the CPU forms).
   float sst_eps;
   uint sst_substitutes;  // SstParams::substitutes

@@ -19,7 +19,7 @@ namespace sst {
 struct SamplerInputs {
   SamplerParams params{};
   std::span<const Vpl> vpls;
-  std::span<const LightNode> nodes;
+  const LightTree* tree = nullptr;  // tree samplers' light tree
   std::span<const uint32_t> cut_nodes;
   std::span<const uint32_t> cut_sizes;
   std::vector<CutGuide> guides;
@@ -39,12 +39,12 @@ inline void begin_sampler_inputs(uint32_t method, std::span<const Vpl> vpls, flo
   out.accel = &accel;
 }
 
-// The tree's nodes and where its root and leaves are.
+// The tree and where its root and leaves are.
 inline void set_tree_inputs(const LightTree& tree, SamplerInputs& out) {
-  out.nodes = tree.nodes;
+  out.tree = &tree;
   out.params.tree_root = tree.empty() ? kNoNode : tree.root;
   out.params.tree_first_leaf = tree.first_leaf;
-  out.params.tree_node_count = uint32_t(tree.nodes.size());
+  out.params.tree_node_count = tree.node_count();
 }
 
 // The shadow ray between x (geometric normal ng, on the VPL's side) and a VPL at p with normal n,
@@ -58,7 +58,7 @@ inline bool sampler_inputs_occluded(const SamplerInputs& ml, vec3 x, vec3 ng, ve
 #define ML_CTX_PARAM const ::sst::SamplerInputs &ml,
 #define ML_CTX ml,
 #define ML_PARAMS ml.params
-#define ML_NODE(i) ml.nodes[i]
+#define ML_NODE(i) ml.tree->node(i)
 #define ML_VPL(j) ml.vpls[j]
 #define ML_CUT_NODE(i) ml.cut_nodes[i]
 #define ML_CUT_SIZE(b) ml.cut_sizes[b]

@@ -17,7 +17,7 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
   });
   counters["tree"] = {{"kind", tree_.kind},
                       {"built_on", built_on},
-                      {"nodes", tree_.nodes.size()},
+                      {"nodes", tree_.node_count()},
                       {"height", tree_height(tree_)},
                       {"suitable_internal", count_suitable_internal(tree_)},
                       {"length_scale", tree_.length_scale},

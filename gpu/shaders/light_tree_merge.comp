@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // The radix tree found and merged bottom-up, as core/lighttree/radix_tree_builder.cpp's
 // build_radix_tree does it (Apetrei 2014; the topology from radix_tree_node.h's
-// radix_tree_parent and radix_tree_index): one invocation per sorted position i writes leaf
-// first_leaf + i (make_leaf of VPL ids[i]) and climbs. At each parent the child that arrives
+// radix_tree_parent and radix_tree_index): one invocation per sorted position i climbs from
+// leaf first_leaf + i, which is not stored (light_tree.h): tree_node makes it from VPL ids[i]. At each parent the child that arrives
 // first leaves its far end in meets[split] and stops; the second takes it, which completes the
 // parent's range, and merges the parent (merge_children, core/lighttree/substitute.h). Which
 // child is left is the node's, not the arrival order's, so the tree does not depend on
@@ -12,7 +12,7 @@
 //
 // Dispatch: one workgroup per VPL (x, y with x <= 65535), ltb_group() is the sorted position.
 // Bindings: 0 GpuVpl vpls[], 1 uint ids[] (sorted), 2 uvec2 keys[] (sorted, unique), 3 uint
-// meets[] (count - 1, zeroed by the host), 4 LightNode nodes[]. Push: count (VPLs), first_leaf,
+// meets[] (count - 1, zeroed by the host), 4 LightNode nodes[] (count - 1). Push: count (VPLs), first_leaf,
 // v_min, sigma_max_abs.
 #include "core/manylight/many_light_layout.h"
 #include "core/lighttree/light_tree_build_layout.h"
@@ -32,12 +32,17 @@ layout(std430, binding = 4) coherent buffer Nodes { LightNode nodes[]; };
 #define RADIX_TREE_KEY(i) keys[i]
 #include "core/lighttree/radix_tree_node.h"
 
+// Node i, as LightTree::node gives it: an internal node is stored, a leaf made from its VPL.
+LightNode tree_node(uint i, SubstituteThresholds thresholds) {
+  if (i < ltb.first_leaf) return nodes[i];
+  uint vpl = ids[i - ltb.first_leaf];
+  return make_leaf(vpls[vpl].position, vpls[vpl].normal, vpls[vpl].intensity, vpl, thresholds);
+}
+
 void main() {
   uint i = ltb_group();
   if (i >= ltb.count) return;
   SubstituteThresholds thresholds = SubstituteThresholds(ltb.v_min, ltb.sigma_max_abs);
-  uint vpl = ids[i];
-  nodes[ltb.first_leaf + i] = make_leaf(vpls[vpl].position, vpls[vpl].normal, vpls[vpl].intensity, vpl, thresholds);
   int n = int(ltb.count);
   int first = int(i);
   int last = int(i);
@@ -57,6 +62,6 @@ void main() {
     uint right = radix_tree_index(n, split + 1, last, false);
     up = radix_tree_parent(n, first, last);
     uint parent = radix_tree_index(n, first, last, up.left_side);
-    nodes[parent] = merge_children(nodes[left], left, nodes[right], right, thresholds);
+    nodes[parent] = merge_children(tree_node(left, thresholds), left, tree_node(right, thresholds), right, thresholds);
   }
 }

@@ -79,7 +79,7 @@ struct Stages {
   }
   void sort() {
     sst::LightTreeBuildStats unused;
-    sst::sort_vpls(vpls, bounds, scratch, unused);
+    sst::sort_vpls(vpls, bounds, scratch, tree, unused);
   }
 };
 
@@ -89,7 +89,7 @@ void BM_SortKeys(benchmark::State& state) {
   for (auto _ : state)
     state.SetIterationTime(seconds([&] {
       sst::Bounds3 b = sst::compute_vpl_bounds(s.vpls);
-      sst::compute_sort_keys(s.vpls, b, s.scratch.keys);
+      sst::compute_sort_keys(s.vpls, b, s.tree.leaf_keys);
     }));
 }
 
@@ -99,8 +99,8 @@ void BM_RadixSort(benchmark::State& state) {
   std::vector<uint64_t> keys;
   sst::compute_sort_keys(s.vpls, s.bounds, keys);
   for (auto _ : state) {
-    s.scratch.keys = keys;
-    state.SetIterationTime(seconds([&] { sst::radix_sort_keys(s.scratch.keys, s.scratch.sort, sst::kIdBits, 64); }));
+    s.tree.leaf_keys = keys;
+    state.SetIterationTime(seconds([&] { sst::radix_sort_keys(s.tree.leaf_keys, s.scratch.sort, sst::kIdBits, 64); }));
   }
 }
 

@@ -77,7 +77,7 @@ std::string first_difference(const LightTree& gpu, const LightTree& cpu) {
     std::string words;
     for (int w = 0; w < 24; ++w)
       if (g[w] != c[w]) words += " word " + std::to_string(w) + ": " + std::to_string(g[w]) + " vs " + std::to_string(c[w]);
-    return "node " + std::to_string(i) + (cpu.nodes[i].is_leaf() ? " (leaf)" : " (internal)") + words;
+    return "node " + std::to_string(i) + words;
   }
   return "";
 }
@@ -93,6 +93,7 @@ void expect_same_tree(const LightTree& gpu, const LightTree& cpu) {
   EXPECT_TRUE(same_bits(gpu.v_min, cpu.v_min));
   EXPECT_TRUE(same_bits(gpu.sigma_max_abs, cpu.sigma_max_abs));
   EXPECT_TRUE(test::same_bytes(gpu.nodes, cpu.nodes)) << first_difference(gpu, cpu);
+  EXPECT_TRUE(gpu.leaf_keys == cpu.leaf_keys) << "the leaves' keys, hence their VPLs";
 }
 
 class LightTreeBuildGpu : public ::testing::Test {
@@ -180,8 +181,9 @@ TEST_F(LightTreeBuildGpu, EmptySetAndUnsupportedTreesAndBadVpls) {
   expect_equal_to_cpu({}, perfect_params());
   LightTreeParams agglomerative;
   agglomerative.tree = "agglomerative";
-  EXPECT_THROW(builder_->build(test::random_vpls(10, 1), agglomerative), Error);
-  VplSet bad = test::random_vpls(10, 1);
+  VplSet ten = test::random_vpls(10, 1);
+  EXPECT_THROW(builder_->build(ten, agglomerative), Error);
+  VplSet bad = ten;
   bad[3].normal = vec3(0.0f);
   EXPECT_THROW(builder_->build(bad, LightTreeParams{}), Error);
   EXPECT_THROW(builder_->build(bad, perfect_params()), Error);

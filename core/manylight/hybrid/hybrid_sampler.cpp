@@ -58,7 +58,7 @@ void HybridSampler::build(const VplLighting& lighting, StageTimer& timer, nlohma
     for (uint32_t i = 1u << level; i < (2u << level); ++i)
       if (!tree_[i].empty()) mock_cut_.push_back(i);
   }
-  counters["hybrid"] = {{"tree_nodes", tree_.nodes.size()},
+  counters["hybrid"] = {{"tree_nodes", tree_.node_count()},
                         {"tree_height", tree_.empty() ? 0 : tree_height(tree_)},
                         {"suitable_internal_nodes", count_suitable_internal(tree_)},
                         {"blocks", cuts_.grid.count()},

@@ -131,7 +131,7 @@ void RtslcSampler::build(const VplLighting& lighting, StageTimer& timer, nlohman
   timer.time("cuts", [&] {
     cuts_ = build_block_cuts(ctx, tree_, params_.block_size, uint32_t(params_.cut_size), random_pivot, error);
   });
-  counters["rtslc"] = {{"tree_nodes", tree_.nodes.size()},
+  counters["rtslc"] = {{"tree_nodes", tree_.node_count()},
                        {"tree_height", tree_.empty() ? 0 : tree_height(tree_)},
                        {"blocks", cuts_.grid.count()},
                        {"mean_cut_size", cuts_.mean_size()}};

@@ -34,7 +34,7 @@ TreeWalk walk_tree(const LightTree& tree, const ChildWeights& weights, const Sto
 }
 
 std::vector<double> stop_probabilities(const LightTree& tree, const ChildWeights& weights, const StopRule& stop) {
-  std::vector<double> out(tree.nodes.size(), 0.0);
+  std::vector<double> out(tree.node_count(), 0.0);
   if (!tree.empty()) collect_stops(tree, weights, stop, tree.root, 1.0, out);
   return out;
 }

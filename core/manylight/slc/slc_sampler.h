@@ -28,7 +28,7 @@ using ChildWeights = std::function<std::array<double, 2>(const LightNode& left, 
 using StopRule = std::function<bool(const LightNode& node)>;
 
 // The exact probability that a walk from tree.root with these weights stops at each node (indexed
-// like tree.nodes; 0 for nodes it never stops at). Sums to 1 over the nodes unless some branch is
+// like tree.node(), [0, node_count()); 0 for nodes it never stops at). Sums to 1 over the nodes unless some branch is
 // dead. For tests.
 std::vector<double> stop_probabilities(const LightTree& tree, const ChildWeights& weights, const StopRule& stop);
 

@@ -38,13 +38,16 @@ void check_invariants(const LightTree& tree, const VplSet& vpls) {
     return;
   }
   ASSERT_FALSE(tree.empty());
+  EXPECT_EQ(tree.nodes.size(), tree.first_leaf) << "only the nodes above the leaves are stored";
+  EXPECT_EQ(tree.leaf_keys.size(), vpls.size());
+  EXPECT_EQ(tree.vpls.data(), vpls.data()) << "the leaves are made from the VPLs built over";
   std::vector<int> seen(vpls.size(), 0);
   std::vector<uint32_t> order = reachable_nodes(tree);
   size_t expected_nodes = tree.kind == "perfect" ? 2 * size_t(tree.leaf_count) - 1 : 2 * vpls.size() - 1;
   EXPECT_EQ(order.size(), expected_nodes) << "every node reached exactly once";
   size_t leaves = 0;
   for (uint32_t i : order) {
-    const LightNode& n = tree.nodes[i];
+    const LightNode& n = tree[i];
     ASSERT_TRUE(all_finite(n)) << "node " << i;
     EXPECT_NEAR(glm::length(n.normal), 1.0f, 1e-5f) << i;
     EXPECT_GE(n.similarity, 0.0f);
@@ -75,7 +78,7 @@ void check_invariants(const LightTree& tree, const VplSet& vpls) {
       EXPECT_EQ(n.variance, vec3(0.0f));
       continue;
     }
-    const LightNode &a = tree.nodes[n.left], &b = tree.nodes[n.right];
+    const LightNode &a = tree[n.left], &b = tree[n.right];
     // Exact: the builders compute these with one float add / min / max each.
     EXPECT_EQ(n.intensity, a.intensity + b.intensity) << i;
     EXPECT_EQ(n.bounds_lo, glm::min(a.bounds_lo, b.bounds_lo)) << i;
@@ -92,7 +95,7 @@ void check_invariants(const LightTree& tree, const VplSet& vpls) {
   }
   EXPECT_EQ(leaves, tree.leaf_count);
   for (size_t v = 0; v < vpls.size(); ++v) EXPECT_EQ(seen[v], 1) << "vpl " << v << " must be in exactly one leaf";
-  const LightNode& root = tree.nodes[tree.root];
+  const LightNode& root = tree[tree.root];
   EXPECT_EQ(root.vpl_count, vpls.size());
   Bounds3 box;
   for (const Vpl& v : vpls) box.extend(v.position);
@@ -131,7 +134,7 @@ TEST_P(LightTreeBuilders, CoincidentVplsHaveZeroVariance) {
   check_invariants(tree, vpls);
   EXPECT_EQ(tree.length_scale, 0.0f);
   for (uint32_t i : reachable_nodes(tree)) {
-    const LightNode& n = tree.nodes[i];
+    const LightNode& n = tree[i];
     if (n.empty()) continue;
     EXPECT_EQ(n.mean, vec3(1.0f, 2.0f, 3.0f));
     EXPECT_EQ(n.variance, vec3(0.0f));
@@ -157,12 +160,12 @@ TEST_P(LightTreeBuilders, ZeroIntensitiesGiveFiniteTrees) {
   for (Vpl& v : black) v.intensity = vec3(0.0f);
   LightTree tree = build_light_tree(black, params_for(GetParam()));
   check_invariants(tree, black);
-  EXPECT_EQ(tree.nodes[tree.root].intensity, vec3(0.0f));
+  EXPECT_EQ(tree[tree.root].intensity, vec3(0.0f));
   for (uint32_t i : reachable_nodes(tree)) {
-    const LightNode& n = tree.nodes[i];
-    if (n.is_leaf() || tree.nodes[n.left].empty() || tree.nodes[n.right].empty()) continue;
+    const LightNode& n = tree[i];
+    if (n.is_leaf() || tree[n.left].empty() || tree[n.right].empty()) continue;
     EXPECT_EQ(n.variance, vec3(0.0f)) << "zero total weight: variance 0";
-    vec3 midpoint = 0.5f * (tree.nodes[n.left].mean + tree.nodes[n.right].mean);
+    vec3 midpoint = 0.5f * (tree[n.left].mean + tree[n.right].mean);
     EXPECT_LE(glm::length(n.mean - midpoint), 1e-6f) << "zero weight: midpoint";
   }
   VplSet mixed = test::random_vpls(300, 31);
@@ -182,7 +185,7 @@ TEST_P(LightTreeBuilders, SameBytesWithOneAndTwoThreads) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
     two = build_light_tree(vpls, params_for(GetParam()));
   }
-  EXPECT_TRUE(test::same_bytes(one.nodes, two.nodes));
+  EXPECT_TRUE(test::same_tree(one, two));
   EXPECT_EQ(one.root, two.root);
 }
 
@@ -193,7 +196,7 @@ TEST_P(LightTreeBuilders, RebuildIntoTheSameTreeEqualsAFreshBuild) {
     VplSet vpls = test::random_vpls(n, uint32_t(50 + n));
     builder.build(vpls, params_for(GetParam()), nullptr, tree);
     LightTree fresh = build_light_tree(vpls, params_for(GetParam()));
-    EXPECT_TRUE(test::same_bytes(tree.nodes, fresh.nodes)) << n;
+    EXPECT_TRUE(test::same_tree(tree, fresh)) << n;
     EXPECT_EQ(tree.root, fresh.root);
   }
 }
@@ -216,11 +219,11 @@ TEST(LightTreeRadix, SplitsEveryRangeAtItsHighestDifferingBit) {
   ASSERT_EQ(in_order.size(), vpls.size());
   for (size_t i = 0; i < in_order.size(); ++i) {
     EXPECT_EQ(in_order[i], tree.first_leaf + i);
-    EXPECT_EQ(tree.nodes[in_order[i]].vpl(), uint32_t(keys[i] & (kMaxSortKeyVpls - 1)));
+    EXPECT_EQ(tree[in_order[i]].vpl(), uint32_t(keys[i] & (kMaxSortKeyVpls - 1)));
   }
   for (uint32_t i = 0; i < tree.first_leaf; ++i) {
-    std::vector<uint32_t> left = leaves_below(tree, tree.nodes[i].left);
-    std::vector<uint32_t> right = leaves_below(tree, tree.nodes[i].right);
+    std::vector<uint32_t> left = leaves_below(tree, tree[i].left);
+    std::vector<uint32_t> right = leaves_below(tree, tree[i].right);
     size_t first = left.front() - tree.first_leaf, split = left.back() - tree.first_leaf;
     size_t last = right.back() - tree.first_leaf;
     ASSERT_EQ(right.front() - tree.first_leaf, split + 1) << "contiguous ranges";
@@ -236,17 +239,17 @@ TEST(LightTreePerfect, IsAHeapOverSortedVplsPaddedWithEmptyLeaves) {
   EXPECT_EQ(tree.root, 1u);
   EXPECT_EQ(tree.first_leaf, 64u);
   EXPECT_EQ(tree.leaf_count, 64u);
-  EXPECT_EQ(tree.nodes.size(), 128u);
+  EXPECT_EQ(tree.nodes.size(), 64u) << "the internal nodes and node 0; the leaves are made from their VPLs";
   for (uint32_t i = 1; i < 64; ++i) {
-    EXPECT_EQ(tree.nodes[i].left, 2 * i);
-    EXPECT_EQ(tree.nodes[i].right, 2 * i + 1);
+    EXPECT_EQ(tree[i].left, 2 * i);
+    EXPECT_EQ(tree[i].right, 2 * i + 1);
   }
-  for (uint32_t i = 64 + 33; i < 128; ++i) EXPECT_EQ(tree.nodes[i].vpl(), kNoNode);
+  for (uint32_t i = 64 + 33; i < 128; ++i) EXPECT_EQ(tree[i].vpl(), kNoNode);
   // Subtrees of padding only are empty nodes with empty boxes.
-  EXPECT_EQ(tree.nodes[127 / 2].vpl_count, 0u);  // node 63 covers leaves 126, 127
-  EXPECT_TRUE(tree.nodes[63].bounds().empty());
-  EXPECT_EQ(tree.nodes[3].vpl_count, 1u);  // leaves 96..127: VPL 32 only
-  EXPECT_EQ(tree.nodes[3].mean, tree.nodes[96].mean) << "a single VPL's substitute passes up unchanged";
+  EXPECT_EQ(tree[127 / 2].vpl_count, 0u);  // node 63 covers leaves 126, 127
+  EXPECT_TRUE(tree[63].bounds().empty());
+  EXPECT_EQ(tree[3].vpl_count, 1u);  // leaves 96..127: VPL 32 only
+  EXPECT_EQ(tree[3].mean, tree[96].mean) << "a single VPL's substitute passes up unchanged";
 }
 
 // Two groups of equal, equally oriented VPLs 50 apart: any pair across the gap costs at least
@@ -261,8 +264,8 @@ TEST(LightTreeAgglomerative, SeparatesDistantGroupsAtTheRoot) {
   vpls.insert(vpls.end(), b.begin(), b.end());
   for (Vpl& v : vpls) v = {v.position, vec3(0, 0, 1), vec3(1.0f)};
   LightTree tree = build_light_tree(vpls, params_for("agglomerative"));
-  const LightNode& root = tree.nodes[tree.root];
-  std::vector<uint32_t> counts{tree.nodes[root.left].vpl_count, tree.nodes[root.right].vpl_count};
+  const LightNode& root = tree[tree.root];
+  std::vector<uint32_t> counts{tree[root.left].vpl_count, tree[root.right].vpl_count};
   std::sort(counts.begin(), counts.end());
   EXPECT_EQ(counts, (std::vector<uint32_t>{200, 300}));
 }
@@ -347,14 +350,14 @@ TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {
     std::vector<uint64_t> keys;
     compute_sort_keys(vpls, compute_vpl_bounds(vpls), keys);
     std::sort(keys.begin(), keys.end());
-    ASSERT_EQ(tree.nodes.size(), 2 * n - 1);
+    ASSERT_EQ(tree.nodes.size(), n - 1);
     for (uint32_t i = 0; i + 1 < n; ++i) {
       RadixTreeNode karras = radix_tree_node(keys.data(), int(n), int(i));
-      ASSERT_EQ(tree.nodes[i].left, karras.left) << i;
-      ASSERT_EQ(tree.nodes[i].right, karras.right) << i;
-      ASSERT_EQ(tree.nodes[i].vpl_count, karras.last - karras.first + 1) << i;
+      ASSERT_EQ(tree[i].left, karras.left) << i;
+      ASSERT_EQ(tree[i].right, karras.right) << i;
+      ASSERT_EQ(tree[i].vpl_count, karras.last - karras.first + 1) << i;
     }
-    EXPECT_TRUE(test::same_bytes(tree.nodes, build_light_tree(vpls, params_for("radix")).nodes));
+    EXPECT_TRUE(test::same_tree(tree, build_light_tree(vpls, params_for("radix"))));
   }
 }
 
@@ -372,27 +375,26 @@ TEST(LightTreeRadix, EightThreadsBuildTheSameTreeAsOne) {
   for (int round = 0; round < 3; ++round) {
     LightTree many;
     eight.execute([&] { many = build_light_tree(vpls, params_for("radix")); });
-    EXPECT_TRUE(test::same_bytes(one.nodes, many.nodes)) << round;
+    EXPECT_TRUE(test::same_tree(one, many)) << round;
   }
 }
 
-// A build cut short (an exception inside it) leaves meeting slots set; the next build must not
-// read them as arrivals.
-TEST(LightTreeRadix, ABuildAfterOneCutShortClearsTheMeetingSlots) {
+// The climbs' meeting slots live in the sort's spare key buffer, which the sort leaves full of
+// keys (and a build cut short by an exception, of set slots): a build must clear them before its
+// climbs, or a first arrival would read as the second.
+TEST(LightTreeRadix, ABuildClearsTheMeetingSlotsItFindsSet) {
   VplSet vpls = test::random_vpls(5000, 81);
   LightTreeBuilder::Scratch scratch;
   LightTreeBuildStats stats;
-  sort_vpls(vpls, compute_vpl_bounds(vpls), scratch, stats);
   SubstituteThresholds thresholds{0.5f, 1.0f};
   LightTree tree;
+  sort_vpls(vpls, compute_vpl_bounds(vpls), scratch, tree, stats);
   build_radix_tree(vpls, thresholds, scratch, tree);
   UninitializedVector<LightNode> fresh = tree.nodes;
-  ASSERT_GE(scratch.meets.size(), 4999u);
-  for (size_t i = 0; i < scratch.meets.size(); ++i) scratch.meets[i].store(uint32_t(i % 7), std::memory_order_relaxed);
-  scratch.meets_clean = false;
+  ASSERT_GE(scratch.sort.keys.size(), 4999u);
+  for (size_t i = 0; i < scratch.sort.keys.size(); ++i) scratch.sort.keys[i] = i % 7;
   build_radix_tree(vpls, thresholds, scratch, tree);
   EXPECT_TRUE(test::same_bytes(tree.nodes, fresh));
-  EXPECT_TRUE(scratch.meets_clean);
 }
 
 TEST(LightTreeStats, HeightAndStageTimes) {
@@ -404,7 +406,8 @@ TEST(LightTreeStats, HeightAndStageTimes) {
   EXPECT_GE(stats.total_ms, stats.keys_ms + stats.sort_ms + stats.merge_ms);
   LightTree radix = build_light_tree(vpls, params_for("radix"));
   EXPECT_GE(tree_height(radix), 10u);
-  EXPECT_EQ(tree_height(build_light_tree(test::random_vpls(1, 1), params_for("radix"))), 0u);
+  VplSet one = test::random_vpls(1, 1);
+  EXPECT_EQ(tree_height(build_light_tree(one, params_for("radix"))), 0u);
 }
 
 }  // namespace

@@ -60,7 +60,7 @@ inline std::vector<uint32_t> reachable_nodes(const LightTree& tree) {
     uint32_t i = stack.back();
     stack.pop_back();
     order.push_back(i);
-    const LightNode& n = tree.nodes[i];
+    const LightNode& n = tree[i];
     if (!n.is_leaf()) {
       stack.push_back(n.right);
       stack.push_back(n.left);
@@ -75,7 +75,7 @@ inline std::vector<uint32_t> leaves_below(const LightTree& tree, uint32_t node) 
   while (!stack.empty()) {
     uint32_t i = stack.back();
     stack.pop_back();
-    const LightNode& n = tree.nodes[i];
+    const LightNode& n = tree[i];
     if (n.is_leaf()) {
       leaves.push_back(i);
     } else {
@@ -94,6 +94,12 @@ inline bool all_finite(const LightNode& n) {
 
 inline bool same_bytes(const UninitializedVector<LightNode>& a, const UninitializedVector<LightNode>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(LightNode)) == 0);
+}
+
+// The same tree: stored nodes byte for byte, the same leaves (their keys) and the same layout.
+inline bool same_tree(const LightTree& a, const LightTree& b) {
+  return same_bytes(a.nodes, b.nodes) && a.leaf_keys == b.leaf_keys && a.root == b.root &&
+         a.first_leaf == b.first_leaf && a.leaf_count == b.leaf_count;
 }
 
 }  // namespace sst::test

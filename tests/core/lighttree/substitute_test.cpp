@@ -116,17 +116,17 @@ Direct direct(const LightTree& tree, uint32_t node) {
   std::vector<uint32_t> leaves = leaves_below(tree, node);
   Direct d;
   for (uint32_t l : leaves) {
-    double c = luminance(tree.nodes[l].intensity);
+    double c = luminance(tree[l].intensity);
     d.weight += c;
-    d.mean += c * dvec3(tree.nodes[l].mean);
+    d.mean += c * dvec3(tree[l].mean);
   }
   if (d.weight == 0.0) return d;
   d.mean /= d.weight;
-  Basis basis = basis_from_normal(tree.nodes[node].normal);
+  Basis basis = basis_from_normal(tree[node].normal);
   dvec3 t(basis.t), b(basis.b), n(basis.n);
   for (uint32_t l : leaves) {
-    double c = luminance(tree.nodes[l].intensity) / d.weight;
-    dvec3 off = dvec3(tree.nodes[l].mean) - d.mean;
+    double c = luminance(tree[l].intensity) / d.weight;
+    dvec3 off = dvec3(tree[l].mean) - d.mean;
     d.trace += c * glm::dot(off, off);
     dvec3 local(glm::dot(off, t), glm::dot(off, b), glm::dot(off, n));
     d.diagonal += c * local * local;
@@ -161,7 +161,7 @@ TEST_P(SstTrees, MeanAndTraceEqualTheDirectComputation) {
     Tolerance tol = tolerance(tree, glm::length(offset) + 4.0);
     double worst_mean = 0.0, worst_trace = 0.0;
     for (uint32_t i : reachable_nodes(tree)) {
-      const LightNode& n = tree.nodes[i];
+      const LightNode& n = tree[i];
       if (n.is_leaf() || n.empty()) continue;
       Direct d = direct(tree, i);
       if (d.weight == 0.0) continue;  // all black: midpoint, by definition not the direct mean
@@ -198,7 +198,7 @@ TEST_P(SstTrees, EveryComponentIsExactWhenAllNormalsAgree) {
   Tolerance tol = tolerance(tree, 6.0);
   size_t suitable = 0, internal = 0;
   for (uint32_t i : reachable_nodes(tree)) {
-    const LightNode& n = tree.nodes[i];
+    const LightNode& n = tree[i];
     if (n.is_leaf() || n.empty()) continue;
     ++internal;
     ASSERT_NEAR(glm::dot(n.normal, normal), 1.0f, 1e-6f);
@@ -258,11 +258,11 @@ TEST_P(SstTrees, NormalVarianceStaysWithinTheMergeBound) {
     params.tree = GetParam();
     LightTree tree = build_light_tree(vpls, params);
     Tolerance tol = tolerance(tree, 4.0);
-    std::vector<Moments> moments(tree.nodes.size());
+    std::vector<Moments> moments(tree.node_count());
     std::vector<uint32_t> order = reachable_nodes(tree);  // parents before children
     double worst_ratio = 0.0, worst_error = 0.0;
     for (auto it = order.rbegin(); it != order.rend(); ++it) {
-      const LightNode& n = tree.nodes[*it];
+      const LightNode& n = tree[*it];
       Moments& m = moments[*it];
       if (n.is_leaf()) {
         if (n.empty()) continue;
@@ -277,7 +277,7 @@ TEST_P(SstTrees, NormalVarianceStaysWithinTheMergeBound) {
       for (uint32_t child : {n.left, n.right}) {
         const Moments& cm = moments[child];
         if (cm.weight == 0.0) continue;
-        float cos_theta = std::clamp(glm::dot(tree.nodes[child].normal, n.normal), -1.0f, 1.0f);
+        float cos_theta = std::clamp(glm::dot(tree[child].normal, n.normal), -1.0f, 1.0f);
         double sin_theta = std::sqrt(std::max(0.0, 1.0 - double(cos_theta) * cos_theta));
         m.bound += cm.weight / m.weight * (cm.bound + std::min(2.0 * sin_theta, 1.0) * cm.trace());
       }
@@ -302,10 +302,10 @@ TEST_P(SstTrees, SuitableNodesOfARoomLieOnOneWall) {
   LightTree tree = build_light_tree(vpls, params);
   size_t suitable = 0;
   for (uint32_t i : reachable_nodes(tree)) {
-    const LightNode& n = tree.nodes[i];
+    const LightNode& n = tree[i];
     if (n.is_leaf() || n.empty() || !n.suitable()) continue;
     ++suitable;
-    for (uint32_t l : leaves_below(tree, i)) ASSERT_EQ(tree.nodes[l].normal, n.normal) << "node " << i;
+    for (uint32_t l : leaves_below(tree, i)) ASSERT_EQ(tree[l].normal, n.normal) << "node " << i;
     ASSERT_EQ(n.variance.z, 0.0f);
   }
   EXPECT_GT(suitable, 1000u);

@@ -52,7 +52,7 @@ ShadingPoint test_point() {
 // node and that no zero-probability node is drawn.
 void check_frequencies(const LightTree& tree, const ChildWeights& weights, const StopRule& stop,
                        const std::vector<double>& probabilities, int draws) {
-  size_t n = tree.nodes.size();
+  size_t n = tree.node_count();
   std::vector<double> observed(n + 1, 0.0), expected(n + 1);
   double sum = 0.0;
   for (size_t i = 0; i < n; ++i) {
@@ -182,7 +182,8 @@ TEST(SlcSampler, DeadBranchAndSingleLeaf) {
   TreeWalk t = walk_tree(tree, slc_weights(sp), stop_at_leaves, ps);
   EXPECT_EQ(t.node, kNoNode);
   EXPECT_EQ(probability_value(t.probability), 0.0);
-  LightTree one = build_light_tree({below[0]}, {});
+  VplSet first = {below[0]};
+  LightTree one = build_light_tree(first, {});
   t = walk_tree(one, slc_weights(sp), stop_at_leaves, ps);
   EXPECT_EQ(t.node, one.root);
   EXPECT_EQ(probability_value(t.probability), 1.0);

@@ -89,7 +89,8 @@ double check_distribution(const LightTree& tree, const ChildWeights& weights, co
 TEST(SstSampler, LeafProbabilitiesWithoutSubstitutesMatchFrequencies) {
   LightTreeParams params;
   params.v_min = 1.0f;  // random normals: no internal node has similarity 1
-  LightTree tree = build_light_tree(random_vpls(50, 11), params);
+  VplSet vpls = random_vpls(50, 11);
+  LightTree tree = build_light_tree(vpls, params);
   ASSERT_EQ(count_suitable_internal(tree), 0u);
   // Below the cloud, facing it: no dead branch.
   ShadingPoint sp = point_at(vec3(0.5f, 0.4f, -0.3f), vec3(0.1f, 0.0f, 1.0f));
@@ -99,7 +100,8 @@ TEST(SstSampler, LeafProbabilitiesWithoutSubstitutesMatchFrequencies) {
   EXPECT_NEAR(sum, 1.0, 1e-12);
   EXPECT_EQ(internal, 0);
   // substitutes = false gives the same leaves-only walk even on a tree with suitable nodes.
-  LightTree corner = build_light_tree(corner_vpls(50, 3), {});
+  VplSet corner_set = corner_vpls(50, 3);
+  LightTree corner = build_light_tree(corner_set, {});
   sum = check_distribution(corner, sst_weights(sp, kEps, SstLobe::diffuse), sst_stop_rule(SstLobe::diffuse, false),
                            100000, &internal);
   EXPECT_NEAR(sum, 1.0, 1e-12);
@@ -110,7 +112,8 @@ TEST(SstSampler, StopNodeProbabilitiesWithSubstitutesSumToOne) {
   LightTreeParams params;
   params.v_min = 0.5f;
   params.sigma_max = 0.02f;
-  LightTree tree = build_light_tree(corner_vpls(50, 3), params);
+  VplSet vpls = corner_vpls(50, 3);
+  LightTree tree = build_light_tree(vpls, params);
   ASSERT_GT(count_suitable_internal(tree), 0u);
   // Facing the corner: every VPL of both walls is in front (no dead branch).
   ShadingPoint sp = point_at(vec3(0.6f, 0.5f, 0.4f), vec3(-1.0f, 0.0f, -1.0f));
@@ -122,7 +125,8 @@ TEST(SstSampler, StopNodeProbabilitiesWithSubstitutesSumToOne) {
 }
 
 TEST(SstSampler, GlossyWalkReachesLeavesWithMatchingFrequencies) {
-  LightTree tree = build_light_tree(corner_vpls(50, 3), {});
+  VplSet vpls = corner_vpls(50, 3);
+  LightTree tree = build_light_tree(vpls, {});
   ShadingPoint sp = point_at(vec3(0.6f, 0.5f, 0.4f), vec3(-1.0f, 0.0f, -1.0f), true);
   ASSERT_TRUE(sp.brdf.specular);
   sp.brdf = sst_lobe_brdf(sp.brdf, true);

@@ -179,6 +179,8 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
       build_perfect(*gpu_vpls, sorted, push, tree, stats);
     tree.leaf_keys.resize(n);  // uvec2 keys: a uint64_t's bytes (light_tree_build_layout.h)
     sorted.keys->download(std::span<uint64_t>(tree.leaf_keys));
+    tree.stored_nodes = uint32_t(tree.nodes.size());
+    if (params.leaves == "stored") store_leaves(tree);  // on the host, as the CPU's build
     gpu_total = stats.keys_ms + stats.sort_ms + stats.hierarchy_ms + stats.merge_ms;
   }
   stats.total_ms = ms_since(start);

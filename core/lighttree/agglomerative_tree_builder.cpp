@@ -194,6 +194,7 @@ void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& th
                 " VPLs, got " + std::to_string(n) + " (use tree 'radix' or 'perfect')");
   set_leaf_source(vpls, thresholds, tree);
   resize_uninitialized(tree.nodes, n == 0 ? 0 : n - 1, /*huge_pages=*/false);
+  tree.stored_nodes = uint32_t(tree.nodes.size());
   tree.leaf_keys.resize(n);
   for (uint32_t i = 0; i < n; ++i) tree.leaf_keys[i] = i;  // leaf i is VPL i
   tree.root = n == 0 ? kNoNode : 0;

@@ -1,6 +1,10 @@
 #include "core/lighttree/light_tree.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -14,6 +18,7 @@ namespace {
 
 const std::vector<std::string> kTreeKinds = {"radix", "perfect", "agglomerative"};
 const std::vector<std::string> kLengthScales = {"vpl_bounds", "scene_bounds"};
+const std::vector<std::string> kLeaves = {"stored", "made"};
 
 // Runs f and adds its wall time to `ms`.
 template <class F>
@@ -46,6 +51,23 @@ void validate(const LightTreeParams& params) {
     throw Error("light tree: sigma_max " + std::to_string(params.sigma_max) + " is not a finite number >= 0");
   if (!contains(kLengthScales, params.sigma_max_relative_to))
     throw Error("light tree: sigma_max_relative_to '" + params.sigma_max_relative_to + "' is not vpl_bounds or scene_bounds");
+  if (!contains(kLeaves, params.leaves))
+    throw Error("light tree: leaves '" + params.leaves + "' is not stored or made");
+}
+
+void store_leaves(LightTree& tree) {
+  const uint32_t total = tree.node_count();
+  tree.nodes.resize(total);  // keeps the internal nodes; adds unwritten elements
+  constexpr uint32_t kPrefetch = 16;
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(tree.first_leaf, total, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t i = r.begin(); i != r.end(); ++i) {
+      // The VPLs are gathered in key order, from scattered addresses: fetch ahead.
+      const uint32_t ahead = i - tree.first_leaf + kPrefetch;
+      if (ahead < tree.vpl_count) __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[ahead])]);
+      tree.nodes[i] = tree.leaf(i - tree.first_leaf);
+    }
+  });
+  tree.stored_nodes = total;
 }
 
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch, LightTree& tree,
@@ -82,6 +104,15 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   tree.v_min = params.v_min;
   tree.sigma_max_abs = params.sigma_max * tree.length_scale;
   SubstituteThresholds thresholds{tree.v_min, tree.sigma_max_abs};
+  if (params.leaves == "stored" && !vpls.empty()) {
+    // Room for the leaves behind the internal nodes the builders write, so that store_leaves
+    // neither moves the array nor faults in a second one.
+    const size_t n = vpls.size(), all = params.tree == "perfect" ? 2 * size_t(std::bit_ceil(n)) : 2 * n - 1;
+    if (tree.nodes.capacity() < all) {
+      tree.nodes = {};
+      tree.nodes.reserve(all);
+    }
+  }
   if (params.tree == "agglomerative") {
     timed(stats.hierarchy_ms, [&] { build_agglomerative_tree(vpls, thresholds, tree.length_scale, tree); });
   } else {
@@ -92,6 +123,7 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
       timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, tree); });
     }
   }
+  if (params.leaves == "stored") timed(stats.merge_ms, [&] { store_leaves(tree); });
   stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
 }

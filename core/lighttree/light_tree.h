@@ -40,12 +40,16 @@ namespace sst {
 //   leaves (zero intensity, empty box, VPL index kNoNode). The nodes of level l are
 //   [2^l, 2^(l+1)).
 //
-// Only the nodes below first_leaf are stored. A leaf holds nothing its VPL does not (make_leaf,
-// substitute.h), so node() makes it from the VPL when it is read: a tree costs 96 bytes a VPL
-// instead of 192.
+// A leaf holds nothing its VPL does not (make_leaf, substitute.h). With LightTreeParams::leaves =
+// made only the nodes below first_leaf are stored, and node() makes a leaf from its VPL when it
+// is read: 96 bytes a VPL instead of 192, for walks that gather the leaves' VPLs from wherever
+// they lie (tests/benchmarks/README.md has the measured cost).
 struct LightTree {
   std::string kind;  // the builder: radix, perfect, agglomerative
-  UninitializedVector<LightNode> nodes;  // [0, first_leaf); builders: resize_uninitialized, then write every node
+  // [0, stored_nodes): every node, or only those below first_leaf (leaves = made). Builders:
+  // resize_uninitialized, then write every node.
+  UninitializedVector<LightNode> nodes;
+  uint32_t stored_nodes = 0;  // nodes.size()
   // Leaf i's sort key, for i < vpl_count (radix, perfect: ascending; agglomerative: i);
   // sort_key_vpl(leaf_keys[i]) is its VPL. Leaves past vpl_count are perfect trees' padding.
   std::vector<uint64_t> leaf_keys;
@@ -65,7 +69,7 @@ struct LightTree {
   uint32_t node_count() const { return empty() ? 0 : first_leaf + leaf_count; }
   // Node i < node_count(), stored or made from its VPL.
   LightNode node(uint32_t i) const {
-    if (i < first_leaf) return nodes[i];
+    if (i < stored_nodes) return nodes[i];
     return leaf(i - first_leaf);
   }
   // Leaf first_leaf + position: its VPL's, or a padding leaf past the VPLs.
@@ -83,6 +87,7 @@ struct LightTreeParams {
   float v_min = 0.5f;
   float sigma_max = 0.005f;
   std::string sigma_max_relative_to = "vpl_bounds";
+  std::string leaves = "stored";
 
   template <class V>
   void visit(V&& v) {
@@ -98,6 +103,10 @@ struct LightTreeParams {
     v("sigma_max_relative_to", sigma_max_relative_to,
       "the length D of sigma_max: the diagonal of the VPLs' bounding box (vpl_bounds: what is lit, not inflated by "
       "sky or ground geometry) or of the scene's (scene_bounds)");
+    v("leaves", leaves,
+      "stored (every node in the tree's array) or made (only the internal nodes stored; a walk makes a leaf from its "
+      "VPL when it reaches it: 96 bytes a VPL less, the same images, walks that gather the VPLs from wherever they "
+      "lie)");
   }
 };
 
@@ -137,6 +146,9 @@ class LightTreeBuilder {
  private:
   std::unique_ptr<Scratch> scratch_;
 };
+
+// Writes the leaves into tree.nodes (LightTreeParams::leaves = stored), made as node() makes them.
+void store_leaves(LightTree& tree);
 
 // The one factory: a tree over `vpls` by params.tree.
 LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,

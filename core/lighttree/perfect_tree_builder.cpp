@@ -40,12 +40,14 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
   set_leaf_source(vpls, thresholds, tree);
   if (n == 0) {
     tree.nodes.clear();
+    tree.stored_nodes = 0;
     tree.root = kNoNode;
     tree.first_leaf = tree.leaf_count = 0;
     return;
   }
   const uint32_t leaves = std::bit_ceil(uint32_t(n));
   resize_uninitialized(tree.nodes, leaves, /*huge_pages=*/false);
+  tree.stored_nodes = leaves;
   tree.root = 1;
   tree.first_leaf = leaves;
   tree.leaf_count = leaves;

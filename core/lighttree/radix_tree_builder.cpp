@@ -46,6 +46,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   const size_t n = tree.leaf_keys.size();
   set_leaf_source(vpls, thresholds, tree);
   resize_uninitialized(tree.nodes, n == 0 ? 0 : n - 1, /*huge_pages=*/false);
+  tree.stored_nodes = uint32_t(tree.nodes.size());
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
@@ -64,8 +65,16 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   const int count = int(n);
   // Chunks of at most kMergeChunk leaves: a chunk's internal nodes and VPLs then stay in the
   // core's cache while its climbs run.
+  const uint32_t first_leaf = tree.first_leaf;
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(n), kMergeChunk), [&](const tbb::blocked_range<uint32_t>& r) {
     const int chunk_begin = int(r.begin()), chunk_end = int(r.end());
+    // A child in place: a stored node, or a leaf made into `made`.
+    auto child = [&](uint32_t c, LightNode& made) -> const LightNode& {
+      if (c < first_leaf) return nodes[c];
+      made = tree.leaf(c - first_leaf);
+      return made;
+    };
+    LightNode made_left, made_right;
     for (int i = chunk_begin; i != chunk_end; ++i) {
       // The VPLs are read in key order, from scattered addresses: fetch ahead of the climbs.
       if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
@@ -100,7 +109,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
         const uint32_t right = radix_tree_index(count, split + 1, last, false);
         up = radix_tree_parent(keys, count, first, last);  // the grandparent, for the next step
         const uint32_t parent = radix_tree_index(count, first, last, up.left_side);
-        nodes[parent] = merge_children(tree.node(left), left, tree.node(right), right, thresholds);
+        nodes[parent] = merge_children(child(left, made_left), left, child(right, made_right), right, thresholds);
       }
     }
   }, tbb::simple_partitioner());

@@ -38,7 +38,8 @@ void check_invariants(const LightTree& tree, const VplSet& vpls) {
     return;
   }
   ASSERT_FALSE(tree.empty());
-  EXPECT_EQ(tree.nodes.size(), tree.first_leaf) << "only the nodes above the leaves are stored";
+  EXPECT_EQ(tree.stored_nodes, tree.nodes.size());
+  EXPECT_TRUE(tree.stored_nodes == tree.node_count() || tree.stored_nodes == tree.first_leaf) << "leaves stored or made";
   EXPECT_EQ(tree.leaf_keys.size(), vpls.size());
   EXPECT_EQ(tree.vpls.data(), vpls.data()) << "the leaves are made from the VPLs built over";
   std::vector<int> seen(vpls.size(), 0);
@@ -201,6 +202,27 @@ TEST_P(LightTreeBuilders, RebuildIntoTheSameTreeEqualsAFreshBuild) {
   }
 }
 
+// leaves = made stores the internal nodes only, and its walks read the same nodes: every node()
+// byte for byte, padding leaves included.
+TEST_P(LightTreeBuilders, MadeLeavesAreTheStoredOnes) {
+  for (size_t n : {0, 1, 2, 3, 1500}) {
+    VplSet vpls = test::random_vpls(n, uint32_t(80 + n));
+    LightTreeParams made_params = params_for(GetParam());
+    made_params.leaves = "made";
+    LightTree stored = build_light_tree(vpls, params_for(GetParam()));
+    LightTree made = build_light_tree(vpls, made_params);
+    ASSERT_EQ(made.nodes.size(), made.first_leaf) << n;
+    ASSERT_EQ(made.stored_nodes, made.first_leaf) << n;
+    ASSERT_EQ(made.node_count(), stored.node_count()) << n;
+    EXPECT_EQ(made.leaf_keys, stored.leaf_keys) << n;
+    for (uint32_t i = 0; i < stored.node_count(); ++i) {
+      const LightNode a = made.node(i), b = stored.node(i);
+      ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "n " << n << " node " << i;
+    }
+    check_invariants(made, vpls);
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(LightTree, LightTreeBuilders, ::testing::Values("radix", "perfect", "agglomerative"));
 
 // The radix tree is the one Karras 2012 defines: leaves in key order, every internal node
@@ -239,7 +261,7 @@ TEST(LightTreePerfect, IsAHeapOverSortedVplsPaddedWithEmptyLeaves) {
   EXPECT_EQ(tree.root, 1u);
   EXPECT_EQ(tree.first_leaf, 64u);
   EXPECT_EQ(tree.leaf_count, 64u);
-  EXPECT_EQ(tree.nodes.size(), 64u) << "the internal nodes and node 0; the leaves are made from their VPLs";
+  EXPECT_EQ(tree.nodes.size(), 128u);
   for (uint32_t i = 1; i < 64; ++i) {
     EXPECT_EQ(tree[i].left, 2 * i);
     EXPECT_EQ(tree[i].right, 2 * i + 1);
@@ -350,7 +372,7 @@ TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {
     std::vector<uint64_t> keys;
     compute_sort_keys(vpls, compute_vpl_bounds(vpls), keys);
     std::sort(keys.begin(), keys.end());
-    ASSERT_EQ(tree.nodes.size(), n - 1);
+    ASSERT_EQ(tree.nodes.size(), 2 * n - 1);
     for (uint32_t i = 0; i + 1 < n; ++i) {
       RadixTreeNode karras = radix_tree_node(keys.data(), int(n), int(i));
       ASSERT_EQ(tree[i].left, karras.left) << i;

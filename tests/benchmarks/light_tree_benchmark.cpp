@@ -114,11 +114,12 @@ void BM_RadixTree(benchmark::State& state) {
     state.SetIterationTime(seconds([&] { sst::build_radix_tree(s.vpls, s.thresholds, s.scratch, s.tree); }));
 }
 
-void whole_build(benchmark::State& state, const std::string& kind, bool room) {
+void whole_build(benchmark::State& state, const std::string& kind, bool room, const std::string& leaves = "stored") {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, thread_count());
   const sst::VplSet& vpls = vpls_for(size_t(state.range(0)), room);
   sst::LightTreeParams params;
   params.tree = kind;
+  params.leaves = leaves;
   sst::LightTreeBuilder builder;
   sst::LightTree tree;
   sst::LightTreeBuildStats stats, sum;
@@ -143,6 +144,7 @@ void whole_build(benchmark::State& state, const std::string& kind, bool room) {
 
 void BM_RadixBuild(benchmark::State& state) { whole_build(state, "radix", false); }
 void BM_RadixBuildRoom(benchmark::State& state) { whole_build(state, "radix", true); }
+void BM_RadixBuildMadeLeaves(benchmark::State& state) { whole_build(state, "radix", false, "made"); }
 void BM_PerfectBuild(benchmark::State& state) { whole_build(state, "perfect", false); }
 
 #define SST_TREE_BENCH(f) \
@@ -153,6 +155,7 @@ SST_TREE_BENCH(BM_RadixSort);
 SST_TREE_BENCH(BM_RadixTree);
 SST_TREE_BENCH(BM_RadixBuild);
 SST_TREE_BENCH(BM_RadixBuildRoom);
+SST_TREE_BENCH(BM_RadixBuildMadeLeaves);
 SST_TREE_BENCH(BM_PerfectBuild);
 
 }  // namespace

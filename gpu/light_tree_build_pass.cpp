@@ -97,7 +97,8 @@ GpuLightTreeBuilder::Sorted GpuLightTreeBuilder::sort(const GpuBuffer& vpls, gls
   return out;
 }
 
-// build_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1) (not stored).
+// build_radix_tree's layout: internal nodes [0, n-1), root 0, leaves [n-1, 2n-1) (made, not
+// stored: build() stores them on the host where asked to).
 void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,
                                       LightTree& tree, LightTreeBuildStats& stats) {
   const uint32_t n = push.count, node_count = n - 1;
@@ -117,7 +118,7 @@ void GpuLightTreeBuilder::build_radix(const GpuBuffer& vpls, const Sorted& sorte
   nodes->download(std::span<LightNode>(tree.nodes));
 }
 
-// build_perfect_tree's heap: node 0 unused, root 1, leaves [L, 2L) (not stored). The level above
+// build_perfect_tree's heap: node 0 unused, root 1, leaves [L, 2L) (as in build_radix). The level above
 // the leaves in one pass, then one pass per level, bottom-up (the CPU's subtree blocking only
 // orders the same merges).
 void GpuLightTreeBuilder::build_perfect(const GpuBuffer& vpls, const Sorted& sorted, glsl::LightTreeBuildPush push,

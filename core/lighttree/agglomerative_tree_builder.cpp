@@ -187,7 +187,7 @@ float weight_floor(const VplSet& vpls) {
 }  // namespace
 
 void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, float length_scale,
-                              LightTree& tree) {
+                              bool store, LightTree& tree) {
   const size_t n = vpls.size();
   if (n > kMaxAgglomerativeVpls)
     throw Error("light tree: tree 'agglomerative' is O(n^2) and limited to " + std::to_string(kMaxAgglomerativeVpls) +
@@ -200,15 +200,17 @@ void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& th
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
-  if (n <= 1) return;
-  // Cluster ids: VPL i is cluster i; the merge that makes cluster n + s is the s-th. Node
-  // indices put the last merge (the root) at 0 and leaf i at n-1+i.
-  auto node_of = [n](uint32_t cluster) { return cluster < n ? uint32_t(n - 1 + cluster) : uint32_t(2 * n - 2 - cluster); };
-  Clustering clustering(vpls, length_scale, weight_floor(vpls));
-  clustering.run([&](uint32_t id, uint32_t a, uint32_t b) {
-    uint32_t na = node_of(a), nb = node_of(b);
-    tree.nodes[node_of(id)] = merge_children(tree.node(na), na, tree.node(nb), nb, thresholds);
-  });
+  if (n > 1) {
+    // Cluster ids: VPL i is cluster i; the merge that makes cluster n + s is the s-th. Node
+    // indices put the last merge (the root) at 0 and leaf i at n-1+i.
+    auto node_of = [n](uint32_t cluster) { return cluster < n ? uint32_t(n - 1 + cluster) : uint32_t(2 * n - 2 - cluster); };
+    Clustering clustering(vpls, length_scale, weight_floor(vpls));
+    clustering.run([&](uint32_t id, uint32_t a, uint32_t b) {
+      uint32_t na = node_of(a), nb = node_of(b);
+      tree.nodes[node_of(id)] = merge_children(tree.node(na), na, tree.node(nb), nb, thresholds);
+    });
+  }
+  if (store) store_leaves(tree);
 }
 
 }  // namespace sst

@@ -4,7 +4,6 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -104,26 +103,17 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   tree.v_min = params.v_min;
   tree.sigma_max_abs = params.sigma_max * tree.length_scale;
   SubstituteThresholds thresholds{tree.v_min, tree.sigma_max_abs};
-  if (params.leaves == "stored" && !vpls.empty()) {
-    // Room for the leaves behind the internal nodes the builders write, so that store_leaves
-    // neither moves the array nor faults in a second one.
-    const size_t n = vpls.size(), all = params.tree == "perfect" ? 2 * size_t(std::bit_ceil(n)) : 2 * n - 1;
-    if (tree.nodes.capacity() < all) {
-      tree.nodes = {};
-      tree.nodes.reserve(all);
-    }
-  }
+  const bool store = params.leaves == "stored";
   if (params.tree == "agglomerative") {
-    timed(stats.hierarchy_ms, [&] { build_agglomerative_tree(vpls, thresholds, tree.length_scale, tree); });
+    timed(stats.hierarchy_ms, [&] { build_agglomerative_tree(vpls, thresholds, tree.length_scale, store, tree); });
   } else {
     sort_vpls(vpls, bounds, *scratch_, tree, stats);
     if (params.tree == "radix") {
-      timed(stats.merge_ms, [&] { build_radix_tree(vpls, thresholds, *scratch_, tree); });
+      timed(stats.merge_ms, [&] { build_radix_tree(vpls, thresholds, store, *scratch_, tree); });
     } else {
-      timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, tree); });
+      timed(stats.merge_ms, [&] { build_perfect_tree(vpls, thresholds, store, tree); });
     }
   }
-  if (params.leaves == "stored") timed(stats.merge_ms, [&] { store_leaves(tree); });
   stats.total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   if (stats_out) *stats_out = stats;
 }

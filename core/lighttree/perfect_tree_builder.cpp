@@ -21,11 +21,11 @@ constexpr uint32_t kPrefetch = 8;
 constexpr uint32_t kSubtreeLeaves = 2048;
 
 void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thresholds, LightTree& tree) {
-  const bool above_leaves = 2 * begin >= tree.first_leaf;
+  const bool above_made_leaves = 2 * begin >= tree.first_leaf && tree.stored_nodes == tree.first_leaf;
   for (uint32_t i = begin; i != end; ++i) {
-    // Above the leaves the VPLs are read in key order, from scattered addresses: fetch ahead.
+    // Above made leaves the VPLs are read in key order, from scattered addresses: fetch ahead.
     const uint32_t ahead = 2 * (i + kPrefetch) - tree.first_leaf;
-    if (above_leaves && i + kPrefetch < end && ahead + 1 < tree.vpl_count) {
+    if (above_made_leaves && i + kPrefetch < end && ahead + 1 < tree.vpl_count) {
       __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[ahead])]);
       __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[ahead + 1])]);
     }
@@ -35,7 +35,7 @@ void merge_range(uint32_t begin, uint32_t end, const SubstituteThresholds& thres
 
 }  // namespace
 
-void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTree& tree) {
+void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, bool store_leaves, LightTree& tree) {
   const size_t n = tree.leaf_keys.size();
   set_leaf_source(vpls, thresholds, tree);
   if (n == 0) {
@@ -46,8 +46,8 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
     return;
   }
   const uint32_t leaves = std::bit_ceil(uint32_t(n));
-  resize_uninitialized(tree.nodes, leaves, /*huge_pages=*/false);
-  tree.stored_nodes = leaves;
+  resize_uninitialized(tree.nodes, store_leaves ? 2 * size_t(leaves) : leaves, /*huge_pages=*/false);
+  tree.stored_nodes = uint32_t(tree.nodes.size());
   tree.root = 1;
   tree.first_leaf = leaves;
   tree.leaf_count = leaves;
@@ -56,6 +56,13 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
   // nodes of one level are consecutive: [(leaves + k sub) / 2^l, + sub / 2^l)) ...
   const uint32_t sub = std::min(leaves, kSubtreeLeaves), subtrees = leaves / sub;
   tbb::parallel_for(uint32_t(0), subtrees, [&](uint32_t k) {
+    if (store_leaves) {  // the subtree's leaves before its merges read them
+      for (uint32_t i = leaves + k * sub; i != leaves + (k + 1) * sub; ++i) {
+        const uint32_t ahead = i - leaves + kPrefetch;  // the VPLs are gathered: fetch ahead
+        if (ahead < tree.vpl_count) __builtin_prefetch(&vpls[sort_key_vpl(tree.leaf_keys[ahead])]);
+        tree.nodes[i] = tree.leaf(i - leaves);
+      }
+    }
     for (uint32_t first = (leaves + k * sub) / 2, width = sub / 2; width >= 1; first /= 2, width /= 2)
       merge_range(first, first + width, thresholds, tree);
   });

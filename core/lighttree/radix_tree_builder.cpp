@@ -41,16 +41,20 @@ constexpr uint32_t kMergeChunk = 2048;
 
 }  // namespace
 
-void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
-                      LightTree& tree) {
+void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, bool store_leaves,
+                      LightTreeBuilder::Scratch& scratch, LightTree& tree) {
   const size_t n = tree.leaf_keys.size();
   set_leaf_source(vpls, thresholds, tree);
-  resize_uninitialized(tree.nodes, n == 0 ? 0 : n - 1, /*huge_pages=*/false);
+  resize_uninitialized(tree.nodes, n == 0 ? 0 : store_leaves ? 2 * n - 1 : n - 1, /*huge_pages=*/false);
   tree.stored_nodes = uint32_t(tree.nodes.size());
   tree.root = n == 0 ? kNoNode : 0;
   tree.first_leaf = n == 0 ? 0 : uint32_t(n - 1);
   tree.leaf_count = uint32_t(n);
-  if (n <= 1) return;
+  if (n == 0) return;
+  if (n == 1) {  // a single leaf, the root
+    if (store_leaves) tree.nodes[0] = tree.leaf(0);
+    return;
+  }
   // The meeting slots, one per split position: the far end of the child that arrived first,
   // plus one; 0 until then. They live in the sort's spare key buffer, which the keys no longer
   // need: 8 bytes a VPL that a buffer of their own would add to the peak memory.
@@ -68,16 +72,26 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   const uint32_t first_leaf = tree.first_leaf;
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(n), kMergeChunk), [&](const tbb::blocked_range<uint32_t>& r) {
     const int chunk_begin = int(r.begin()), chunk_end = int(r.end());
+    // Stored leaves first, as a loop of independent iterations: the VPLs are gathered in key
+    // order, from scattered addresses, and the climbs below would stall on each of those loads.
+    // A leaf of a neighbouring chunk is written before that chunk's climbs, hence before its
+    // arrival at a parent that straddles the border.
+    if (store_leaves) {
+      for (int i = chunk_begin; i != chunk_end; ++i) {
+        if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
+        nodes[first_leaf + uint32_t(i)] = tree.leaf(uint32_t(i));
+      }
+    }
     // A child in place: a stored node, or a leaf made into `made`.
     auto child = [&](uint32_t c, LightNode& made) -> const LightNode& {
-      if (c < first_leaf) return nodes[c];
+      if (c < tree.stored_nodes) return nodes[c];
       made = tree.leaf(c - first_leaf);
       return made;
     };
     LightNode made_left, made_right;
     for (int i = chunk_begin; i != chunk_end; ++i) {
-      // The VPLs are read in key order, from scattered addresses: fetch ahead of the climbs.
-      if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
+      // Made leaves' VPLs are read in key order too: fetch ahead of the climbs.
+      if (!store_leaves && i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
       int first = i, last = i;  // the node just completed
       RadixTreeParent up = radix_tree_parent(keys, count, first, last);  // unused at the root
       while (first != 0 || last != count - 1) {

@@ -1,5 +1,6 @@
 // The builders behind build_light_tree(), for light_tree.cpp and the benchmark. Each fills
-// `tree.nodes` (the internal nodes), `leaf_keys`, `root`, `first_leaf` and `leaf_count`;
+// `tree.nodes` (the internal nodes, and the leaves after them with `store_leaves`),
+// `stored_nodes`, `leaf_keys`, `root`, `first_leaf` and `leaf_count`;
 // light_tree.cpp does the rest (bounds, thresholds, VPLs, parameter checks) and times the stages.
 #pragma once
 #include <vector>
@@ -29,15 +30,15 @@ void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::
 
 // The radix tree of Karras 2012 over tree.leaf_keys (needs sort_vpls first), found and merged in
 // one bottom-up pass (Apetrei 2014).
-void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTreeBuilder::Scratch& scratch,
-                      LightTree& tree);
+void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, bool store_leaves,
+                      LightTreeBuilder::Scratch& scratch, LightTree& tree);
 
 // Heap layout over the sorted VPLs (needs sort_vpls first), merged level by level.
-void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, LightTree& tree);
+void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, bool store_leaves, LightTree& tree);
 
 // Walter 2005 greedy pairing; O(n^2) time, so limited to kMaxAgglomerativeVpls.
 inline constexpr size_t kMaxAgglomerativeVpls = 20000;
 void build_agglomerative_tree(const VplSet& vpls, const SubstituteThresholds& thresholds, float length_scale,
-                              LightTree& tree);
+                              bool store_leaves, LightTree& tree);
 
 }  // namespace sst

@@ -3,17 +3,18 @@
 // The radix tree found and merged bottom-up, as core/lighttree/radix_tree_builder.cpp's
 // build_radix_tree does it (Apetrei 2014; the topology from radix_tree_node.h's
 // radix_tree_parent and radix_tree_index): one invocation per sorted position i climbs from
-// leaf first_leaf + i, which is not stored (light_tree.h): tree_node makes it from VPL ids[i]. At each parent the child that arrives
-// first leaves its far end in meets[split] and stops; the second takes it, which completes the
-// parent's range, and merges the parent (merge_children, core/lighttree/substitute.h). Which
-// child is left is the node's, not the arrival order's, so the tree does not depend on
-// scheduling. A climb is at most 64 nodes long (the radix tree's height is bounded by the key's
-// 64 bits).
+// leaf first_leaf + i, which the GPU does not store: tree_node makes it from VPL ids[i], as
+// LightTree::node does (the host stores the leaves, store_leaves, where asked to). At each parent
+// the child that arrives first leaves its far end in meets[split] and stops; the second takes
+// it, which completes the parent's range, and merges the parent (merge_children,
+// core/lighttree/substitute.h). Which child is left is the node's, not the arrival order's, so
+// the tree does not depend on scheduling. A climb is at most 64 nodes long (the radix tree's
+// height is bounded by the key's 64 bits).
 //
 // Dispatch: one workgroup per VPL (x, y with x <= 65535), ltb_group() is the sorted position.
 // Bindings: 0 GpuVpl vpls[], 1 uint ids[] (sorted), 2 uvec2 keys[] (sorted, unique), 3 uint
-// meets[] (count - 1, zeroed by the host), 4 LightNode nodes[] (count - 1). Push: count (VPLs), first_leaf,
-// v_min, sigma_max_abs.
+// meets[] (count - 1, zeroed by the host), 4 LightNode nodes[] (count - 1). Push: count (VPLs),
+// first_leaf, v_min, sigma_max_abs.
 #include "core/manylight/many_light_layout.h"
 #include "core/lighttree/light_tree_build_layout.h"
 #include "core/lighttree/substitute.h"

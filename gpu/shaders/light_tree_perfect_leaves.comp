@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // The level above the leaves of the GPU perfect (heap) light tree, laid out as build_perfect_tree
 // (core/lighttree/perfect_tree_builder.cpp) lays it out, made by core/lighttree/substitute.h.
-// The leaves are not stored (light_tree.h): leaf position j is make_leaf of VPL ids[j] for
+// The GPU does not store the leaves (the host does, store_leaves, where asked to): leaf position j is make_leaf of VPL ids[j] for
 // j < count and a padding leaf past it. Invocation i < L/2 merges leaves 2i and 2i + 1 into node
 // L/2 + i; invocation 0 also writes node 0, the unused padding leaf that keeps the heap's indices
 // 1-based.

@@ -109,9 +109,9 @@ void BM_RadixTree(benchmark::State& state) {
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, thread_count());
   Stages s(vpls_for(size_t(state.range(0))));
   s.sort();
-  sst::build_radix_tree(s.vpls, s.thresholds, s.scratch, s.tree);  // the tree's storage, as in later frames
+  sst::build_radix_tree(s.vpls, s.thresholds, /*store_leaves=*/true, s.scratch, s.tree);  // the tree's storage, as in later frames
   for (auto _ : state)
-    state.SetIterationTime(seconds([&] { sst::build_radix_tree(s.vpls, s.thresholds, s.scratch, s.tree); }));
+    state.SetIterationTime(seconds([&] { sst::build_radix_tree(s.vpls, s.thresholds, /*store_leaves=*/true, s.scratch, s.tree); }));
 }
 
 void whole_build(benchmark::State& state, const std::string& kind, bool room, const std::string& leaves = "stored") {

@@ -411,11 +411,11 @@ TEST(LightTreeRadix, ABuildClearsTheMeetingSlotsItFindsSet) {
   SubstituteThresholds thresholds{0.5f, 1.0f};
   LightTree tree;
   sort_vpls(vpls, compute_vpl_bounds(vpls), scratch, tree, stats);
-  build_radix_tree(vpls, thresholds, scratch, tree);
+  build_radix_tree(vpls, thresholds, /*store_leaves=*/true, scratch, tree);
   UninitializedVector<LightNode> fresh = tree.nodes;
   ASSERT_GE(scratch.sort.keys.size(), 4999u);
   for (size_t i = 0; i < scratch.sort.keys.size(); ++i) scratch.sort.keys[i] = i % 7;
-  build_radix_tree(vpls, thresholds, scratch, tree);
+  build_radix_tree(vpls, thresholds, /*store_leaves=*/true, scratch, tree);
   EXPECT_TRUE(test::same_bytes(tree.nodes, fresh));
 }
 

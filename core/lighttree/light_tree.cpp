@@ -55,18 +55,10 @@ void validate(const LightTreeParams& params) {
 }
 
 void store_leaves(LightTree& tree) {
-  const uint32_t total = tree.node_count();
-  tree.nodes.resize(total);  // keeps the internal nodes; adds unwritten elements
-  constexpr uint32_t kPrefetch = 16;
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(tree.first_leaf, total, 4096), [&](const tbb::blocked_range<uint32_t>& r) {
-    for (uint32_t i = r.begin(); i != r.end(); ++i) {
-      // The VPLs are gathered in key order, from scattered addresses: fetch ahead.
-      const uint32_t ahead = i - tree.first_leaf + kPrefetch;
-      if (ahead < tree.vpl_count) __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[ahead])]);
-      tree.nodes[i] = tree.leaf(i - tree.first_leaf);
-    }
-  });
-  tree.stored_nodes = total;
+  tree.nodes.resize(tree.node_count());  // keeps the internal nodes; adds unwritten elements
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.leaf_count, 4096),
+                    [&](const tbb::blocked_range<uint32_t>& r) { write_leaves(tree, r.begin(), r.end()); });
+  tree.stored_nodes = tree.node_count();
 }
 
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch, LightTree& tree,
@@ -97,7 +89,6 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   timed(stats.bounds_ms, [&] { bounds = compute_vpl_bounds(vpls); });
   float scale = length_scale(params, bounds, scene_bounds);
   tree.kind = params.tree;
-  tree.vpl_count = uint32_t(vpls.size());
   tree.vpl_bounds = bounds;
   tree.length_scale = scale;
   tree.v_min = params.v_min;

@@ -23,7 +23,6 @@
 
 #include "core/lighttree/light_node.h"
 #include "core/lighttree/sort_key.h"
-#include "core/lighttree/substitute.h"
 #include "core/math/math.h"
 #include "core/util/memory.h"
 #include "core/util/params.h"
@@ -67,20 +66,30 @@ struct LightTree {
   bool empty() const { return root == kNoNode; }
   // Stored and made nodes together: first_leaf + leaf_count.
   uint32_t node_count() const { return empty() ? 0 : first_leaf + leaf_count; }
-  // Node i < node_count(), stored or made from its VPL.
-  LightNode node(uint32_t i) const {
-    if (i < stored_nodes) return nodes[i];
-    return leaf(i - first_leaf);
-  }
+  // Node i < node_count(), stored or made from its VPL (light_tree_node.h).
+  LightNode node(uint32_t i) const;
   // Leaf first_leaf + position: its VPL's, or a padding leaf past the VPLs.
-  LightNode leaf(uint32_t position) const {
-    const SubstituteThresholds thresholds{v_min, sigma_max_abs};
-    if (position >= vpl_count) return make_padding_leaf(thresholds);
-    const uint32_t vpl = sort_key_vpl(leaf_keys[position]);
-    return make_leaf(vpls[vpl], vpl, thresholds);
-  }
+  LightNode leaf(uint32_t position) const;
   LightNode operator[](uint32_t i) const { return node(i); }
 };
+
+}  // namespace sst
+
+#define LIGHT_TREE_PARAM const ::sst::LightTree &tree,
+#define LIGHT_TREE_ARG tree,
+#define LIGHT_TREE_STORED(i) tree.nodes[i]
+#define LIGHT_TREE_LEAF_VPL(j) ::sst::sort_key_vpl(tree.leaf_keys[j])
+#define LIGHT_TREE_VPL(v) tree.vpls[v]
+#include "core/lighttree/light_tree_node.h"
+
+namespace sst {
+
+inline LightNode LightTree::node(uint32_t i) const {
+  return light_tree_node(*this, i, stored_nodes, first_leaf, vpl_count, {v_min, sigma_max_abs});
+}
+inline LightNode LightTree::leaf(uint32_t position) const {
+  return light_tree_leaf(*this, position, vpl_count, {v_min, sigma_max_abs});
+}
 
 struct LightTreeParams {
   std::string tree = "radix";

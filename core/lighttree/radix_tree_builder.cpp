@@ -52,7 +52,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   tree.leaf_count = uint32_t(n);
   if (n == 0) return;
   if (n == 1) {  // a single leaf, the root
-    if (store_leaves) tree.nodes[0] = tree.leaf(0);
+    if (store_leaves) write_leaves(tree, 0, 1);
     return;
   }
   // The meeting slots, one per split position: the far end of the child that arrived first,
@@ -69,26 +69,13 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   const int count = int(n);
   // Chunks of at most kMergeChunk leaves: a chunk's internal nodes and VPLs then stay in the
   // core's cache while its climbs run.
-  const uint32_t first_leaf = tree.first_leaf;
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, uint32_t(n), kMergeChunk), [&](const tbb::blocked_range<uint32_t>& r) {
     const int chunk_begin = int(r.begin()), chunk_end = int(r.end());
     // Stored leaves first, as a loop of independent iterations: the VPLs are gathered in key
     // order, from scattered addresses, and the climbs below would stall on each of those loads.
     // A leaf of a neighbouring chunk is written before that chunk's climbs, hence before its
     // arrival at a parent that straddles the border.
-    if (store_leaves) {
-      for (int i = chunk_begin; i != chunk_end; ++i) {
-        if (i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
-        nodes[first_leaf + uint32_t(i)] = tree.leaf(uint32_t(i));
-      }
-    }
-    // A child in place: a stored node, or a leaf made into `made`.
-    auto child = [&](uint32_t c, LightNode& made) -> const LightNode& {
-      if (c < tree.stored_nodes) return nodes[c];
-      made = tree.leaf(c - first_leaf);
-      return made;
-    };
-    LightNode made_left, made_right;
+    if (store_leaves) write_leaves(tree, uint32_t(chunk_begin), uint32_t(chunk_end));
     for (int i = chunk_begin; i != chunk_end; ++i) {
       // Made leaves' VPLs are read in key order too: fetch ahead of the climbs.
       if (!store_leaves && i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
@@ -123,7 +110,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
         const uint32_t right = radix_tree_index(count, split + 1, last, false);
         up = radix_tree_parent(keys, count, first, last);  // the grandparent, for the next step
         const uint32_t parent = radix_tree_index(count, first, last, up.left_side);
-        nodes[parent] = merge_children(child(left, made_left), left, child(right, made_right), right, thresholds);
+        nodes[parent] = merge_children(tree.node(left), left, tree.node(right), right, thresholds);
       }
     }
   }, tbb::simple_partitioner());

@@ -24,6 +24,16 @@ inline void set_leaf_source(const VplSet& vpls, const SubstituteThresholds& thre
   tree.sigma_max_abs = thresholds.sigma_max_abs;
 }
 
+// Writes leaf positions [begin, end) into tree.nodes (leaves = stored), as node() makes them.
+inline void write_leaves(LightTree& tree, uint32_t begin, uint32_t end) {
+  constexpr uint32_t kAhead = 16;
+  for (uint32_t j = begin; j != end; ++j) {
+    // The VPLs are gathered in key order, from scattered addresses: fetch ahead.
+    if (j + kAhead < tree.vpl_count) __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[j + kAhead])]);
+    tree.nodes[tree.first_leaf + j] = tree.leaf(j);
+  }
+}
+
 // Keys of `vpls` over `vpl_bounds`, sorted into tree.leaf_keys. Times the two stages into `stats`.
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch, LightTree& tree,
                LightTreeBuildStats& stats);

@@ -3,8 +3,8 @@
 // The radix tree found and merged bottom-up, as core/lighttree/radix_tree_builder.cpp's
 // build_radix_tree does it (Apetrei 2014; the topology from radix_tree_node.h's
 // radix_tree_parent and radix_tree_index): one invocation per sorted position i climbs from
-// leaf first_leaf + i, which the GPU does not store: tree_node makes it from VPL ids[i], as
-// LightTree::node does (the host stores the leaves, store_leaves, where asked to). At each parent
+// leaf first_leaf + i, which the GPU does not store: light_tree_node makes it from VPL ids[i],
+// as for LightTree::node (the host stores the leaves, store_leaves, where asked to). At each parent
 // the child that arrives first leaves its far end in meets[split] and stops; the second takes
 // it, which completes the parent's range, and merges the parent (merge_children,
 // core/lighttree/substitute.h). Which child is left is the node's, not the arrival order's, so
@@ -17,7 +17,6 @@
 // first_leaf, v_min, sigma_max_abs.
 #include "core/manylight/many_light_layout.h"
 #include "core/lighttree/light_tree_build_layout.h"
-#include "core/lighttree/substitute.h"
 
 // One invocation per workgroup: lavapipe (llvmpipe, LLVM 15) runs a workgroup's invocations as
 // SIMD lanes and mis-executes the branch on an atomic's result when lanes diverge in the climb
@@ -32,13 +31,10 @@ layout(std430, binding = 4) coherent buffer Nodes { LightNode nodes[]; };
 
 #define RADIX_TREE_KEY(i) keys[i]
 #include "core/lighttree/radix_tree_node.h"
-
-// Node i, as LightTree::node gives it: an internal node is stored, a leaf made from its VPL.
-LightNode tree_node(uint i, SubstituteThresholds thresholds) {
-  if (i < ltb.first_leaf) return nodes[i];
-  uint vpl = ids[i - ltb.first_leaf];
-  return make_leaf(vpls[vpl].position, vpls[vpl].normal, vpls[vpl].intensity, vpl, thresholds);
-}
+#define LIGHT_TREE_STORED(i) nodes[i]
+#define LIGHT_TREE_LEAF_VPL(j) ids[j]
+#define LIGHT_TREE_VPL(v) vpls[v]
+#include "core/lighttree/light_tree_node.h"
 
 void main() {
   uint i = ltb_group();
@@ -63,6 +59,8 @@ void main() {
     uint right = radix_tree_index(n, split + 1, last, false);
     up = radix_tree_parent(n, first, last);
     uint parent = radix_tree_index(n, first, last, up.left_side);
-    nodes[parent] = merge_children(tree_node(left, thresholds), left, tree_node(right, thresholds), right, thresholds);
+    LightNode a = light_tree_node(left, ltb.first_leaf, ltb.first_leaf, ltb.count, thresholds);
+    LightNode b = light_tree_node(right, ltb.first_leaf, ltb.first_leaf, ltb.count, thresholds);
+    nodes[parent] = merge_children(a, left, b, right, thresholds);
   }
 }

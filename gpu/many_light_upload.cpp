@@ -19,19 +19,12 @@ GpuManyLightInputs::GpuManyLightInputs(const VulkanContext& context, const Sampl
   std::vector<GpuVpl> packed = pack_vpls(inputs.vpls);
   params_buffer_ = upload_buffer(context, std::span<const SamplerParams>(&params_, 1), "sampler parameters");
   vpls_ = upload_buffer(context, std::span<const GpuVpl>(packed), "sampler VPLs");
-  // Every node, leaves made as LightTree::node makes them where the tree stores none (the shaders
-  // read a node as one buffer element: a GLSL function returning a node made glslang's `precise`
-  // propagation exhaust memory).
-  std::vector<LightNode> made;
-  std::span<const LightNode> nodes;
-  if (inputs.tree && inputs.tree->stored_nodes == inputs.tree->node_count()) {
-    nodes = inputs.tree->nodes;
-  } else if (inputs.tree) {
-    made.resize(inputs.tree->node_count());
-    for (uint32_t i = 0; i < made.size(); ++i) made[i] = inputs.tree->node(i);
-    nodes = made;
-  }
-  nodes_ = upload_buffer(context, nodes, "sampler tree nodes");
+  // Every node, leaves made as LightTree::node makes them where the tree stores none, written
+  // straight into the mapped buffer (the shaders read a node as one buffer element: a GLSL function
+  // returning a node made glslang's `precise` propagation exhaust memory).
+  const size_t node_count = inputs.tree ? inputs.tree->node_count() : 0;
+  nodes_ = make_buffer(context, node_count, sizeof(LightNode), "sampler tree nodes");
+  if (node_count > 0) copy_nodes(*inputs.tree, {static_cast<LightNode*>(nodes_->data()), node_count});
   cut_nodes_ = upload_buffer(context, inputs.cut_nodes, "sampler cut nodes");
   cut_sizes_ = upload_buffer(context, inputs.cut_sizes, "sampler cut sizes");
   guides_ = upload_buffer(context, std::span<const CutGuide>(inputs.guides), "sampler cut guides");

@@ -17,7 +17,7 @@ namespace {
 
 const std::vector<std::string> kTreeKinds = {"radix", "perfect", "agglomerative"};
 const std::vector<std::string> kLengthScales = {"vpl_bounds", "scene_bounds"};
-const std::vector<std::string> kLeaves = {"stored", "made"};
+const std::vector<std::string> kLeaves = {"made", "stored"};
 
 // Runs f and adds its wall time to `ms`.
 template <class F>
@@ -54,11 +54,27 @@ void validate(const LightTreeParams& params) {
     throw Error("light tree: leaves '" + params.leaves + "' is not stored or made");
 }
 
+namespace {
+
+void write_all_leaves(const LightTree& tree, LightNode* nodes) {
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.leaf_count, 4096),
+                    [&](const tbb::blocked_range<uint32_t>& r) { write_leaves(tree, nodes, r.begin(), r.end()); });
+}
+
+}  // namespace
+
 void store_leaves(LightTree& tree) {
   tree.nodes.resize(tree.node_count());  // keeps the internal nodes; adds unwritten elements
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.leaf_count, 4096),
-                    [&](const tbb::blocked_range<uint32_t>& r) { write_leaves(tree, r.begin(), r.end()); });
+  write_all_leaves(tree, tree.nodes.data());
   tree.stored_nodes = tree.node_count();
+}
+
+void copy_nodes(const LightTree& tree, std::span<LightNode> out) {
+  if (out.size() != tree.node_count())
+    throw Error("light tree: copy_nodes into " + std::to_string(out.size()) + " nodes, the tree has " +
+                std::to_string(tree.node_count()));
+  std::copy(tree.nodes.begin(), tree.nodes.begin() + tree.stored_nodes, out.begin());
+  if (tree.stored_nodes < tree.node_count()) write_all_leaves(tree, out.data());
 }
 
 void sort_vpls(const VplSet& vpls, const Bounds3& vpl_bounds, LightTreeBuilder::Scratch& scratch, LightTree& tree,

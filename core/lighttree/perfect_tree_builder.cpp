@@ -56,7 +56,7 @@ void build_perfect_tree(const VplSet& vpls, const SubstituteThresholds& threshol
   // nodes of one level are consecutive: [(leaves + k sub) / 2^l, + sub / 2^l)) ...
   const uint32_t sub = std::min(leaves, kSubtreeLeaves), subtrees = leaves / sub;
   tbb::parallel_for(uint32_t(0), subtrees, [&](uint32_t k) {
-    if (store_leaves) write_leaves(tree, k * sub, (k + 1) * sub);  // before the merges read them
+    if (store_leaves) write_leaves(tree, tree.nodes.data(), k * sub, (k + 1) * sub);  // before the merges read them
     for (uint32_t first = (leaves + k * sub) / 2, width = sub / 2; width >= 1; first /= 2, width /= 2)
       merge_range(first, first + width, thresholds, tree);
   });

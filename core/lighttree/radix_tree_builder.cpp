@@ -52,7 +52,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
   tree.leaf_count = uint32_t(n);
   if (n == 0) return;
   if (n == 1) {  // a single leaf, the root
-    if (store_leaves) write_leaves(tree, 0, 1);
+    if (store_leaves) write_leaves(tree, tree.nodes.data(), 0, 1);
     return;
   }
   // The meeting slots, one per split position: the far end of the child that arrived first,
@@ -75,7 +75,7 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
     // order, from scattered addresses, and the climbs below would stall on each of those loads.
     // A leaf of a neighbouring chunk is written before that chunk's climbs, hence before its
     // arrival at a parent that straddles the border.
-    if (store_leaves) write_leaves(tree, uint32_t(chunk_begin), uint32_t(chunk_end));
+    if (store_leaves) write_leaves(tree, tree.nodes.data(), uint32_t(chunk_begin), uint32_t(chunk_end));
     for (int i = chunk_begin; i != chunk_end; ++i) {
       // Made leaves' VPLs are read in key order too: fetch ahead of the climbs.
       if (!store_leaves && i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);

@@ -24,13 +24,14 @@ inline void set_leaf_source(const VplSet& vpls, const SubstituteThresholds& thre
   tree.sigma_max_abs = thresholds.sigma_max_abs;
 }
 
-// Writes leaf positions [begin, end) into tree.nodes (leaves = stored), as node() makes them.
-inline void write_leaves(LightTree& tree, uint32_t begin, uint32_t end) {
+// Writes leaf positions [begin, end) of `tree` into nodes[first_leaf + begin, first_leaf + end),
+// as node() makes them: tree.nodes.data() to store them (leaves = stored), or a copy's array.
+inline void write_leaves(const LightTree& tree, LightNode* nodes, uint32_t begin, uint32_t end) {
   constexpr uint32_t kAhead = 16;
   for (uint32_t j = begin; j != end; ++j) {
     // The VPLs are gathered in key order, from scattered addresses: fetch ahead.
     if (j + kAhead < tree.vpl_count) __builtin_prefetch(&tree.vpls[sort_key_vpl(tree.leaf_keys[j + kAhead])]);
-    tree.nodes[tree.first_leaf + j] = tree.leaf(j);
+    nodes[tree.first_leaf + j] = tree.leaf(j);
   }
 }
 

@@ -174,11 +174,11 @@ TEST_F(LightTreeBuildGpu, TiesAndDuplicatesEqualTheCpuTree) {
   vpls.push_back({vec3(0.5f), vec3(0.0f, 0.0f, -0.0f) + vec3(0.0f, -1.0f, 0.0f), vec3(0.0f)});  // black VPL
   expect_equal_to_cpu(vpls);
   expect_equal_to_cpu(test::random_vpls(4097, 5, 1000.0f, vec3(-500.0f)));
-  LightTreeParams made;
-  made.leaves = "made";
-  expect_equal_to_cpu(vpls, made);
-  made.tree = "perfect";
-  expect_equal_to_cpu(vpls, made);
+  LightTreeParams stored;  // the default makes the leaves
+  stored.leaves = "stored";
+  expect_equal_to_cpu(vpls, stored);
+  stored.tree = "perfect";
+  expect_equal_to_cpu(vpls, stored);
 }
 
 TEST_F(LightTreeBuildGpu, EmptySetAndUnsupportedTreesAndBadVpls) {

@@ -202,15 +202,18 @@ TEST_P(LightTreeBuilders, RebuildIntoTheSameTreeEqualsAFreshBuild) {
   }
 }
 
-// leaves = made stores the internal nodes only, and its walks read the same nodes: every node()
-// byte for byte, padding leaves included.
+// leaves = made (the default) stores the internal nodes only, and its walks read the same nodes:
+// every node() byte for byte, padding leaves included; so does copy_nodes, the GPU sampler's copy.
 TEST_P(LightTreeBuilders, MadeLeavesAreTheStoredOnes) {
+  EXPECT_EQ(LightTreeParams{}.leaves, "made");
   for (size_t n : {0, 1, 2, 3, 1500}) {
     VplSet vpls = test::random_vpls(n, uint32_t(80 + n));
-    LightTreeParams made_params = params_for(GetParam());
+    LightTreeParams made_params = params_for(GetParam()), stored_params = params_for(GetParam());
     made_params.leaves = "made";
-    LightTree stored = build_light_tree(vpls, params_for(GetParam()));
+    stored_params.leaves = "stored";
+    LightTree stored = build_light_tree(vpls, stored_params);
     LightTree made = build_light_tree(vpls, made_params);
+    ASSERT_EQ(stored.nodes.size(), stored.node_count()) << n;
     ASSERT_EQ(made.nodes.size(), made.first_leaf) << n;
     ASSERT_EQ(made.stored_nodes, made.first_leaf) << n;
     ASSERT_EQ(made.node_count(), stored.node_count()) << n;
@@ -218,6 +221,14 @@ TEST_P(LightTreeBuilders, MadeLeavesAreTheStoredOnes) {
     for (uint32_t i = 0; i < stored.node_count(); ++i) {
       const LightNode a = made.node(i), b = stored.node(i);
       ASSERT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "n " << n << " node " << i;
+    }
+    for (const LightTree* tree : {&made, &stored}) {
+      std::vector<LightNode> copy(tree->node_count());
+      copy_nodes(*tree, copy);
+      ASSERT_EQ(std::memcmp(copy.data(), stored.nodes.data(), copy.size() * sizeof(LightNode)), 0)
+          << "n " << n << (tree == &made ? ", made" : ", stored");
+      copy.push_back({});
+      EXPECT_THROW(copy_nodes(*tree, copy), Error) << "a copy of another size";
     }
     check_invariants(made, vpls);
   }
@@ -261,7 +272,7 @@ TEST(LightTreePerfect, IsAHeapOverSortedVplsPaddedWithEmptyLeaves) {
   EXPECT_EQ(tree.root, 1u);
   EXPECT_EQ(tree.first_leaf, 64u);
   EXPECT_EQ(tree.leaf_count, 64u);
-  EXPECT_EQ(tree.nodes.size(), 128u);
+  EXPECT_EQ(tree.node_count(), 128u);
   for (uint32_t i = 1; i < 64; ++i) {
     EXPECT_EQ(tree[i].left, 2 * i);
     EXPECT_EQ(tree[i].right, 2 * i + 1);
@@ -372,7 +383,7 @@ TEST(LightTreeRadix, NodesAreKarrasNumberedAcrossChunksAndRebuilds) {
     std::vector<uint64_t> keys;
     compute_sort_keys(vpls, compute_vpl_bounds(vpls), keys);
     std::sort(keys.begin(), keys.end());
-    ASSERT_EQ(tree.nodes.size(), 2 * n - 1);
+    ASSERT_EQ(tree.node_count(), 2 * n - 1);
     for (uint32_t i = 0; i + 1 < n; ++i) {
       RadixTreeNode karras = radix_tree_node(keys.data(), int(n), int(i));
       ASSERT_EQ(tree[i].left, karras.left) << i;

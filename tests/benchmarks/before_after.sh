@@ -9,29 +9,37 @@
 # METHODS (default: all of them) chooses methods. FRAMES=N (default 1) renders N-frame sequences
 # instead of single frames: each stage is then the median over the frames, which leaves out the
 # first frame's page faults (a renderer's steady state: storage reused across frames).
+# BEFORE_ARGS and AFTER_ARGS add sst-render options to one side, to compare two settings of one
+# build (e.g. BEFORE_ARGS="--leaves stored" AFTER_ARGS="--leaves made", both dirs the same);
+# VPLS (default 100000) and SPP (default 4) change the VPL methods' count and the samples.
 set -euo pipefail
 before=${1:?before build dir}; after=${2:?after build dir}; rounds=${3:-3}
 scene=${SST_SCENE_DIR:-/work/shared/scenes}/breakfast-room/breakfast-room-point.gltf
 [ -f "$scene" ] || { echo "error: $scene not found (set SST_SCENE_DIR)" >&2; exit 1; }
 methods=${METHODS:-"pt exhaustive uniform slc sst rtslc hybrid gi10"}
 frames=${FRAMES:-1}
+vpls=${VPLS:-100000}
+spp=${SPP:-4}
+read -r -a before_args <<< "${BEFORE_ARGS:-}"
+read -r -a after_args <<< "${AFTER_ARGS:-}"
 sequence=()
 [ "$frames" -gt 1 ] && sequence=(--frames "$frames" --no-preview)
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 for r in $(seq "$rounds"); do
   for b in before after; do
-    dir=$before; [ "$b" = after ] && dir=$after
+    dir=$before; args=("${before_args[@]}")
+    [ "$b" = after ] && { dir=$after; args=("${after_args[@]}"); }
     "$dir/tests/sst_benchmarks" --benchmark_filter='BM_PathTrace(Staircase|CornellBox)' 2>/dev/null | grep '^BM_' |
       awk -v b=$b '{print b, $1, $2}' >> "$out/pt.txt"
     for m in $methods; do
-      extra=(--vpls 100000)
+      extra=(--vpls "$vpls")
       case $m in
         pt) extra=(--max-bounces 8) ;;
         gi10) extra=() ;;
         exhaustive) extra=(--vpls 1000) ;;
       esac
-      "$dir/sst-render" "$scene" --method $m "${extra[@]}" "${sequence[@]}" --spp 4 --width 256 --threads 2 -q \
+      "$dir/sst-render" "$scene" --method $m "${extra[@]}" "${sequence[@]}" "${args[@]}" --spp "$spp" --width 256 --threads 2 -q \
         -o "$out/$b-$m-$r.exr" --json "$out/$b-$m-$r.json" > /dev/null
     done
   done

@@ -206,13 +206,36 @@ constexpr uint64_t kMaxReadPixels = uint64_t(1) << 28;
 // converted from them and the Image gathered from those (8 + 4 + 4).
 constexpr uint64_t kReadBytesPerValue = 16;
 
+// Refuses an image of width x height pixels of `channels` values (plus `extra_bytes` of the
+// reader's own) that we would not read: a size below 1, more pixels than kMaxReadPixels, or more
+// memory than a quarter of the machine's. Sizes are 64-bit: a header's may exceed 32 bits.
+void check_read_size(const std::string& path, int64_t width, int64_t height, int64_t channels, uint64_t extra_bytes) {
+  if (width < 1 || height < 1 || channels < 1)
+    throw Error("cannot read image " + path + ": invalid size " + std::to_string(width) + "x" +
+                std::to_string(height) + " with " + std::to_string(channels) + " channels");
+  if (uint64_t(width) > kMaxReadPixels || uint64_t(height) > kMaxReadPixels ||
+      uint64_t(width) * uint64_t(height) > kMaxReadPixels)
+    throw Error("cannot read image " + path + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels is too large (at most " + std::to_string(kMaxReadPixels) + " pixels)");
+  // At most 2^28 pixels x 2^31 channels x 16 bytes: the product fits in 64 bits.
+  const uint64_t values_bytes = uint64_t(width) * uint64_t(height) * uint64_t(channels) * kReadBytesPerValue;
+  const uint64_t bytes = values_bytes + std::min(extra_bytes, ~uint64_t(0) - values_bytes);
+  if (const uint64_t memory = usable_memory_bytes(); bytes > memory / 4)
+    throw Error("cannot read image " + path + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                " pixels of " + std::to_string(channels) + " channels need " + std::to_string(bytes >> 20) +
+                " MiB to read, more than a quarter of this machine's memory (" + std::to_string(memory >> 20) + " MiB)");
+}
+
 // "" when every attribute of an OpenEXR file's header(s) declares a size that fits in the file,
-// else what does not. OpenEXR 3.1 (through OpenImageIO 2.4) allocates an attribute's declared
+// else what does not; throws, as open_input would, for a header whose data window and channel
+// list check_read_size refuses. Both are checked before OpenEXR opens the file: it sizes its line
+// buffers from the data window as it opens (a 552-byte file declaring one line of 16M pixels,
+// found by fuzzing, made it allocate about 1 GB, which only ASan's allocator touched). OpenEXR 3.1 (through OpenImageIO 2.4) allocates an attribute's declared
 // size before reading it, so a 500-byte file could ask for 2 GB (found by fuzzing); the headers
 // are walked here first: per attribute a name and a type (null-terminated, under 256 bytes), a
 // 32-bit size and the value; an empty name ends a header, and multi-part files (version flag
 // 0x1000) end their list of headers with an empty one.
-std::string check_exr_attribute_sizes(const std::string& path) {
+std::string check_exr_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   unsigned char head[8];
   if (!in.read(reinterpret_cast<char*>(head), 8)) return "";
@@ -232,9 +255,14 @@ std::string check_exr_attribute_sizes(const std::string& path) {
     }
     return false;
   };
+  auto int32_at = [](const unsigned char* b) {
+    return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24);
+  };
   for (int header = 0; header < 65536; ++header) {
     std::string name, type;
     bool first = true;
+    int64_t width = 0, height = 0, channels = 0;
+    bool has_window = false;
     for (;;) {
       if (!read_name(name)) return "truncated or malformed header";
       if (name.empty()) break;
@@ -243,13 +271,30 @@ std::string check_exr_attribute_sizes(const std::string& path) {
       unsigned char size_bytes[4];
       if (!in.read(reinterpret_cast<char*>(size_bytes), 4)) return "truncated header";
       pos += 4;
-      const int32_t size = int32_t(uint32_t(size_bytes[0]) | uint32_t(size_bytes[1]) << 8 |
-                                   uint32_t(size_bytes[2]) << 16 | uint32_t(size_bytes[3]) << 24);
+      const int32_t size = int32_at(size_bytes);
       if (size < 0 || pos + uint64_t(size) > file_size)
         return "header attribute '" + name + "' declares " + std::to_string(size) + " bytes, " +
                std::to_string(file_size - pos) + " follow";
+      if (name == "dataWindow" && type == "box2i" && size == 16) {
+        unsigned char box[16];  // xmin, ymin, xmax, ymax
+        if (!in.read(reinterpret_cast<char*>(box), 16)) return "truncated header";
+        width = int64_t(int32_at(box + 8)) - int32_at(box) + 1;
+        height = int64_t(int32_at(box + 12)) - int32_at(box + 4) + 1;
+        has_window = true;
+      } else if (name == "channels" && type == "chlist") {
+        // Per channel a null-terminated name and 16 bytes (type, pLinear, reserved, sampling);
+        // an empty name ends the list.
+        std::string list(size_t(size), '\0');
+        if (!in.read(list.data(), size)) return "truncated header";
+        for (size_t at = 0; at < list.size() && list[at] != '\0'; ++channels) {
+          const size_t end = list.find('\0', at);
+          if (end == std::string::npos) break;
+          at = end + 1 + 16;
+        }
+      }
       pos += uint64_t(size);
     }
+    if (has_window) check_read_size(path, width, height, std::max<int64_t>(channels, 1), 0);
     if (!multipart || first) return "";
   }
   return "too many headers";
@@ -272,7 +317,7 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   if (!fs::exists(path, ec)) throw Error("cannot read image " + path + ": no such file");
   if (fs::is_directory(path, ec)) throw Error("cannot read image " + path + ": is a directory");
   if (!fs::is_regular_file(path, ec)) throw Error("cannot read image " + path + ": not a regular file");  // a FIFO blocks
-  if (std::string why = check_exr_attribute_sizes(path); !why.empty())
+  if (std::string why = check_exr_header(path); !why.empty())
     throw Error("cannot read image " + path + ": invalid OpenEXR file: " + why);
   OIIO::ImageSpec config;
   // Keep PNG colour values as stored; OIIO would otherwise premultiply by alpha.
@@ -281,23 +326,10 @@ std::unique_ptr<OIIO::ImageInput> open_input(const std::string& path) {
   if (!in) throw Error("cannot read image " + path + ": " + one_line(OIIO::geterror()));
   // The header's size is checked before the pixels are allocated: a PNG of a few dozen bytes can
   // declare 30000x30000 pixels (a decompression bomb).
-  const OIIO::ImageSpec& spec = in->spec();
   // A header may declare a negative size (an OpenEXR data window whose max lies below its min;
-  // found by fuzzing), which the products below would turn into an enormous one.
-  if (spec.width < 1 || spec.height < 1 || spec.nchannels < 1)
-    throw Error("cannot read image " + path + ": invalid size " + std::to_string(spec.width) + "x" +
-                std::to_string(spec.height) + " with " + std::to_string(spec.nchannels) + " channels");
-  const uint64_t pixels = uint64_t(spec.width) * uint64_t(spec.height);
-  if (pixels > kMaxReadPixels)
-    throw Error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                " pixels is too large (at most " + std::to_string(kMaxReadPixels) + " pixels)");
-  // At most 2^28 pixels x 2^31 channels x 16 bytes: the product fits in 64 bits.
-  const uint64_t values_bytes = pixels * uint64_t(spec.nchannels) * kReadBytesPerValue;
-  const uint64_t bytes = values_bytes + std::min(oiio_tile_bytes(spec), ~uint64_t(0) - values_bytes);
-  if (const uint64_t memory = usable_memory_bytes(); bytes > memory / 4)
-    throw Error("cannot read image " + path + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                " pixels of " + std::to_string(spec.nchannels) + " channels need " + std::to_string(bytes >> 20) +
-                " MiB to read, more than a quarter of this machine's memory (" + std::to_string(memory >> 20) + " MiB)");
+  // found by fuzzing), which check_read_size refuses before any product is taken.
+  const OIIO::ImageSpec& spec = in->spec();
+  check_read_size(path, spec.width, spec.height, spec.nchannels, oiio_tile_bytes(spec));
   return in;
 }
 

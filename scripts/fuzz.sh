@@ -57,7 +57,8 @@ fi
 # the same inputs on every machine (and repeats with --ci) and stays below libFuzzer's 2 GB heap limit.
 # The image harness gets 256 MiB: ASan's allocator writes every large allocation whole, and OpenEXR
 # allocates buffers from the header's width that a Release build never touches (a 588-byte file
-# declaring one line of 16M pixels read in 0.6 s in Release, 25 s under ASan: a timeout in CI).
+# declaring one line of 16M pixels read in 0.6 s in Release, 25 s under ASan: a timeout in CI), so
+# the images it may read must be smaller under ASan than the machine would allow.
 declare -A memory_mb=([image]=256)
 for h in "${harnesses[@]}"; do
   mkdir -p "build-fuzz/corpus/$h"

@@ -227,14 +227,14 @@ void check_read_size(const std::string& path, int64_t width, int64_t height, int
 }
 
 // "" when every attribute of an OpenEXR file's header(s) declares a size that fits in the file,
-// else what does not; throws, as open_input would, for a header whose data window and channel
-// list check_read_size refuses. Both are checked before OpenEXR opens the file: it sizes its line
-// buffers from the data window as it opens (a 552-byte file declaring one line of 16M pixels,
-// found by fuzzing, made it allocate about 1 GB, which only ASan's allocator touched). OpenEXR 3.1 (through OpenImageIO 2.4) allocates an attribute's declared
-// size before reading it, so a 500-byte file could ask for 2 GB (found by fuzzing); the headers
-// are walked here first: per attribute a name and a type (null-terminated, under 256 bytes), a
-// 32-bit size and the value; an empty name ends a header, and multi-part files (version flag
-// 0x1000) end their list of headers with an empty one.
+// else what does not; throws, as open_input does, for a header whose data window and channel list
+// check_read_size refuses. OpenEXR 3.1 (through OpenImageIO 2.4) allocates an attribute's declared
+// size before reading it, so a 500-byte file could ask for 2 GB, and sizes buffers from the data
+// window as it opens a file (a 552-byte file declaring one line of 16M pixels had it allocate
+// 200-MB buffers; both found by fuzzing): so the headers are walked here first. Per attribute a
+// name and a type (null-terminated, under 256 bytes), a 32-bit size and the value; an empty name
+// ends a header, and multi-part files (version flag 0x1000) end their list of headers with an
+// empty one.
 std::string check_exr_header(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   unsigned char head[8];

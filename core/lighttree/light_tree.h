@@ -114,7 +114,7 @@ struct LightTreeParams {
       "sky or ground geometry) or of the scene's (scene_bounds)");
     v("leaves", leaves,
       "made (only the internal nodes stored; a walk makes a leaf from its VPL when it reaches it: 96 bytes a VPL "
-      "less and a single frame's build 3-7x faster, at the same sampling time) or stored (every node in the tree's "
+      "less and a single frame's build 2-7x faster, at the same sampling time) or stored (every node in the tree's "
       "array: a walk reads a leaf beside its sibling instead of gathering its VPL); the same images");
   }
 };

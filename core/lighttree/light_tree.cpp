@@ -38,6 +38,12 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+// Every leaf of `tree` into nodes[first_leaf, node_count()), in parallel.
+void write_all_leaves(const LightTree& tree, LightNode* nodes) {
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.leaf_count, 4096),
+                    [&](const tbb::blocked_range<uint32_t>& r) { write_leaves(tree, nodes, r.begin(), r.end()); });
+}
+
 }  // namespace
 
 void validate(const LightTreeParams& params) {
@@ -53,15 +59,6 @@ void validate(const LightTreeParams& params) {
   if (!contains(kLeaves, params.leaves))
     throw Error("light tree: leaves '" + params.leaves + "' is not stored or made");
 }
-
-namespace {
-
-void write_all_leaves(const LightTree& tree, LightNode* nodes) {
-  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, tree.leaf_count, 4096),
-                    [&](const tbb::blocked_range<uint32_t>& r) { write_leaves(tree, nodes, r.begin(), r.end()); });
-}
-
-}  // namespace
 
 void store_leaves(LightTree& tree) {
   tree.nodes.resize(tree.node_count());  // keeps the internal nodes; adds unwritten elements

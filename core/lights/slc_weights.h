@@ -25,10 +25,8 @@ SST_FUNC vec2 slc_pair_weights(vec3 lo0, vec3 hi0, float lum0, bool empty0, vec3
     SST_PRECISE float b = (k == 0 ? lum0 : lum1) * box_cos_bound_in_frame(lo, hi, x, frame);
     base[k] = empty ? 0.0f : b;
     d2[k] = empty ? 0.0f : box_distance2_min(lo, hi, x);
-    float diag = box_diagonal(lo, hi);
-    // <= rather than <: a point box (diag 0) at x itself must not divide by 0.
-    SST_PRECISE float diag2 = diag * diag;
-    if (!empty && d2[k] <= diag2) near = true;
+    // <= rather than <: a point box (diagonal 0) at x itself must not divide by 0.
+    if (!empty && d2[k] <= box_diagonal2(lo, hi)) near = true;
   }
   if (near) return vec2(base[0], base[1]);
   return vec2(base[0] > 0.0f ? base[0] / d2[0] : 0.0f, base[1] > 0.0f ? base[1] / d2[1] : 0.0f);

@@ -13,6 +13,10 @@
 // - Types: float, int, uint, bool, vecN, uvecN, ivecN; float literals carry an f suffix and uint
 //   literals a u, so that C++ never computes in double. No swizzles (sst builds glm with
 //   GLM_FORCE_XYZW_ONLY); v.x or v[i].
+// - lanes4: four floats operated on lane by lane, for one scalar computation run four times side
+//   by side (GLSL: vec4; C++: one SIMD register, which glm's vec4 does not compile to). Only what
+//   is defined below: lanes4(a, b, c, d), l[i] (read), +, -, * (by lanes4 or a float), min, max,
+//   each lane rounding as the scalar operation would.
 // - Built-ins with GLSL's names: abs, min, max, clamp, sqrt, floor, dot, cross, length, normalize,
 //   floatBitsToUint, uintBitsToFloat, bitfieldReverse, findMSB, isnan, isinf, exp, pow (glm and
 //   <cmath> provide most of them in C++). exp and pow are the drivers' own, so a kernel using them
@@ -70,6 +74,24 @@ inline uint bitfieldReverse(uint x) {
 }
 // GLSL's findMSB of an unsigned word: the index of its highest set bit, -1 for 0.
 inline int findMSB(uint x) { return x == 0u ? -1 : 31 - std::countl_zero(x); }
+
+// GCC's vector extension: operators act lane by lane, as SSE instructions. min and max keep
+// glm's (and so the scalar code's) choice between equal values and between -0 and +0.
+struct lanes4 {
+  using Register = float __attribute__((vector_size(16)));
+  Register v;
+  lanes4() = default;
+  explicit lanes4(Register r) : v(r) {}
+  lanes4(float a, float b, float c, float d) : v(Register{a, b, c, d}) {}
+  float operator[](int i) const { return v[i]; }
+};
+inline lanes4 operator+(lanes4 a, lanes4 b) { return lanes4(a.v + b.v); }
+inline lanes4 operator-(lanes4 a, lanes4 b) { return lanes4(a.v - b.v); }
+inline lanes4 operator*(lanes4 a, lanes4 b) { return lanes4(a.v * b.v); }
+inline lanes4 operator*(float s, lanes4 a) { return lanes4(s * a.v); }
+inline lanes4 operator*(lanes4 a, float s) { return lanes4(a.v * s); }
+inline lanes4 min(lanes4 x, lanes4 y) { return lanes4(y.v < x.v ? y.v : x.v); }  // glm::min
+inline lanes4 max(lanes4 x, lanes4 y) { return lanes4(x.v < y.v ? y.v : x.v); }  // glm::max
 }  // namespace sst
 
 #define SST_BEGIN namespace sst {
@@ -87,6 +109,7 @@ inline int findMSB(uint x) { return x == 0u ? -1 : 31 - std::countl_zero(x); }
 #define SST_BEGIN
 #define SST_END
 #define SST_FUNC
+#define lanes4 vec4
 #define SST_IN(T) in T
 #define SST_INOUT(T) inout T
 #define SST_OUT(T) out T

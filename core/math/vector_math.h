@@ -119,6 +119,12 @@ SST_FUNC float box_diagonal(vec3 lo, vec3 hi) {
   return box_empty(lo, hi) ? 0.0f : length3(e);
 }
 
+// The squared length of the box's diagonal (0 for an empty box), with no square root.
+SST_FUNC float box_diagonal2(vec3 lo, vec3 hi) {
+  SST_PRECISE vec3 e = hi - lo;
+  return box_empty(lo, hi) ? 0.0f : dot3(e, e);
+}
+
 SST_END
 
 #ifdef __cplusplus

@@ -100,8 +100,9 @@ SST_FUNC vec3 divide_by_probability(vec3 c, TreeProbability p) {
 // weights computed by the method.
 //
 // One uniform serves several steps, as in pbrt-v4's light BVH: a step that goes left with
-// probability p keeps u < p as the fresh uniform u / p, and u >= p as (u - p) / (1 - p); a Sobol
-// draw per step had cost a walk 15-20 draws. Each rescale spends bits of u, though: a uniform
+// probability p keeps u < p as the fresh uniform u / p, and u >= p as (u - p) / (1 - p), rather
+// than drawing a Sobol point (three hashes, two scrambles) at each of a walk's 15-20 choices.
+// Each rescale spends bits of u, though: a uniform
 // whose choices since its draw had probability P is a multiple of about 2^-24 / P, and a child
 // of probability q is then taken with a probability off by up to that much. So a step draws
 // afresh where 2^-24 / P would exceed q / 256 for the less likely child q: every choice's

@@ -102,14 +102,13 @@ SST_FUNC vec3 divide_by_probability(vec3 c, TreeProbability p) {
 // One uniform serves several steps, as in pbrt-v4's light BVH: a step that goes left with
 // probability p keeps u < p as the fresh uniform u / p, and u >= p as (u - p) / (1 - p), rather
 // than drawing a Sobol point (three hashes, two scrambles) at each of a walk's 15-20 choices.
-// Each rescale spends bits of u, though: a uniform
-// whose choices since its draw had probability P is a multiple of about 2^-24 / P, and a child
-// of probability q is then taken with a probability off by up to that much. So a step draws
-// afresh where 2^-24 / P would exceed q / 256 for the less likely child q: every choice's
-// probabilities are right to 1/256 of the smaller one (or to 2^-24, a fresh uniform's own
-// grain), while the estimate divides by the exact ones. In the breakfast room 11% (slc) and 13%
-// (sst) of the choices draw. The first choices of a walk share one Sobol dimension, which
-// stratifies a pixel's samples over the top subtrees jointly.
+// Each rescale spends bits of u, though: a uniform whose choices since its draw had probability
+// P is a multiple of about 2^-24 / P, and a child of probability q is then taken with a
+// probability off by up to that much. So a step draws afresh where 2^-24 / P would exceed q / 256
+// for the less likely child q: every choice's probabilities are right to 1/256 of the smaller
+// one (or to 2^-24, a fresh uniform's own grain), while the estimate divides by the exact ones.
+// In the breakfast room 11% (slc) and 13% (sst) of the choices draw. The first choices of a walk
+// share one Sobol dimension, which stratifies a pixel's samples over the top subtrees jointly.
 SST_CONSTANT float kTreeWalkUniformBits = 1.52587891e-05f;  // 2^-16 = 2^-24 x 256
 
 struct TreeWalk {

@@ -37,11 +37,11 @@ SST_FUNC float box_min_abs(float lo, float hi) { return lo <= 0.0f && hi >= 0.0f
 // - box_cos_bound_linear: min(1, max_y n.(y - x) / dmin), the exact maximum of a linear function
 //   over the box over a lower bound of |y - x|. Cheap, tight for far boxes; used by rtslc's
 //   weights and the cuts.
-// The range over the box's corners c of dot3(c - x, a), given dl = lo - x and dh = hi - x, the
+// The range over the box's corners c of dot3(c - x, a), given dl = lo - x and dh = hi - x: the
 // scalar form of each lane of box_cos_bound_in_frame (tests/core/math/lanes_test.cpp holds the
-// lanes to it). A
-// corner's dot3 is a sum of one product per axis, added in dot3's order, and rounding is monotone,
-// so the extremes are the sums of the per-axis extremes: the 8 corners' values, to the bit.
+// lanes to it). A corner's dot3 is a sum of one product per axis, added in dot3's order, and
+// rounding is monotone, so the extremes are the sums of the per-axis extremes: the 8 corners'
+// values, to the bit.
 SST_FUNC vec2 box_corner_dot_range(vec3 dl, vec3 dh, vec3 a) {
   SST_PRECISE vec3 pl = dl * a;
   SST_PRECISE vec3 ph = dh * a;

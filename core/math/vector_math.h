@@ -113,17 +113,14 @@ SST_FUNC vec3 box_center(vec3 lo, vec3 hi) {
   return c;
 }
 
-// Length of the box's diagonal (0 for an empty box).
-SST_FUNC float box_diagonal(vec3 lo, vec3 hi) {
-  SST_PRECISE vec3 e = hi - lo;
-  return box_empty(lo, hi) ? 0.0f : length3(e);
-}
-
-// The squared length of the box's diagonal (0 for an empty box), with no square root.
+// The squared length of the box's diagonal (0 for an empty box), for comparisons without a root.
 SST_FUNC float box_diagonal2(vec3 lo, vec3 hi) {
   SST_PRECISE vec3 e = hi - lo;
   return box_empty(lo, hi) ? 0.0f : dot3(e, e);
 }
+
+// Length of the box's diagonal (0 for an empty box): length3's bits, sqrt(dot3).
+SST_FUNC float box_diagonal(vec3 lo, vec3 hi) { return sqrt(box_diagonal2(lo, hi)); }
 
 SST_END
 

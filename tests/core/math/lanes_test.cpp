@@ -3,9 +3,11 @@
 // form: the shared code's CPU/GPU equality rests on these being the same bits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "core/math/box_bounds.h"
 #include "core/rng/hash_rng.h"

@@ -12,11 +12,14 @@
 # BEFORE_ARGS and AFTER_ARGS add sst-render options to one side, to compare two settings of one
 # build (e.g. BEFORE_ARGS="--leaves stored" AFTER_ARGS="--leaves made", both dirs the same);
 # VPLS (default 100000) and SPP (default 4) change the VPL methods' count and the samples.
+# PT_FILTER (default 'BM_PathTrace(Staircase|CornellBox)') chooses the path-tracing benchmarks,
+# e.g. BM_PathTraceCornellBox against a build whose staircase benchmark cannot find its scene.
 set -euo pipefail
 before=${1:?before build dir}; after=${2:?after build dir}; rounds=${3:-3}
 scene=${SST_SCENE_DIR:-/work/shared/scenes}/breakfast-room/breakfast-room-point.gltf
 [ -f "$scene" ] || { echo "error: $scene not found (set SST_SCENE_DIR)" >&2; exit 1; }
 methods=${METHODS:-"pt exhaustive uniform slc sst rtslc hybrid gi10"}
+pt_filter=${PT_FILTER:-'BM_PathTrace(Staircase|CornellBox)'}
 frames=${FRAMES:-1}
 vpls=${VPLS:-100000}
 spp=${SPP:-4}
@@ -30,7 +33,7 @@ for r in $(seq "$rounds"); do
   for b in before after; do
     dir=$before; args=("${before_args[@]}")
     [ "$b" = after ] && { dir=$after; args=("${after_args[@]}"); }
-    "$dir/tests/sst_benchmarks" --benchmark_filter='BM_PathTrace(Staircase|CornellBox)' 2>/dev/null | grep '^BM_' |
+    "$dir/tests/sst_benchmarks" --benchmark_filter="$pt_filter" 2>/dev/null | grep '^BM_' |
       awk -v b=$b '{print b, $1, $2}' >> "$out/pt.txt"
     for m in $methods; do
       extra=(--vpls "$vpls")

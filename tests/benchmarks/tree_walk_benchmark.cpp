@@ -3,11 +3,14 @@
 // on one thread: the "walk step" cost.
 //
 // Shading points are the camera hits of one sample per pixel at 160x90, each with its pixel
-// sampler advanced as ManyLightMethod advances it. The tree is built once. Two variants:
+// sampler advanced as ManyLightMethod advances it. The tree is built once. Three variants:
 //   BM_TreeWalk       estimate() as the renderer calls it: the walk, then the chosen VPL shaded
 //                     with a shadow ray through the scene.
 //   BM_TreeWalkNoScene  the same walks with the shadow rays traced in a one-triangle scene far
 //                     away, so that what remains is the walk (plus one VPL's shading per sample).
+//   BM_TreeWalkNoSceneMaterials  BM_TreeWalkNoScene with the scene's own materials, where the
+//                     others take every surface as diffuse: sst then walks its glossy lobe too,
+//                     as sst-render does by default, with the BRDF in each node's weight.
 // Counters: ns_per_sample, nodes_per_sample, and ns_per_step = time / nodes visited.
 #include <benchmark/benchmark.h>
 
@@ -15,6 +18,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <utility>
 
 #include "core/lights/light_sampler.h"
 #include "core/manylight/shading_point.h"
@@ -57,7 +61,7 @@ struct Frame {
   std::vector<sst::ShadingPoint> points;
   std::vector<sst::PixelSampler> samplers;
 
-  explicit Frame(int vpl_count) : scene(load_scene()), empty(far_triangle()) {
+  Frame(int vpl_count, bool diffuse_only) : scene(load_scene()), empty(far_triangle()) {
     accel = std::make_unique<sst::EmbreeAccel>(scene);
     empty_accel = std::make_unique<sst::EmbreeAccel>(empty);
     lights = std::make_unique<sst::LightSampler>(scene);
@@ -65,7 +69,7 @@ struct Frame {
     options.width = kWidth;
     options.height = kHeight;
     options.seed = kSeed;
-    options.diffuse_only = true;
+    options.diffuse_only = diffuse_only;
     context = std::make_unique<sst::RenderContext>(
         sst::RenderContext{scene, *accel, *lights, *camera, options, kWidth, kHeight, true});
     empty_context = std::make_unique<sst::RenderContext>(
@@ -86,7 +90,7 @@ struct Frame {
         sst::Surface hit;
         sst::PathSample d = sst::trace_path(*context, direct_only, ray, sampler, rc, &hit);
         if (!(d.depth > 0.0f)) continue;
-        points.push_back(sst::shading_point(hit, ray.direction, true, x, y));
+        points.push_back(sst::shading_point(hit, ray.direction, diffuse_only, x, y));
         samplers.push_back(sampler);
       }
   }
@@ -98,10 +102,10 @@ struct Frame {
   }
 };
 
-const Frame& frame_for(int vpls) {
-  static std::map<int, std::unique_ptr<Frame>> frames;
-  auto& f = frames[vpls];
-  if (!f) f = std::make_unique<Frame>(vpls);
+const Frame& frame_for(int vpls, bool diffuse_only) {
+  static std::map<std::pair<int, bool>, std::unique_ptr<Frame>> frames;
+  auto& f = frames[{vpls, diffuse_only}];
+  if (!f) f = std::make_unique<Frame>(vpls, diffuse_only);
   return *f;
 }
 
@@ -110,8 +114,8 @@ std::unique_ptr<sst::IndirectSampler> make_sampler(const std::string& method) {
   return std::make_unique<sst::SstSampler>(sst::LightTreeParams{}, sst::SstParams{});
 }
 
-void walk(benchmark::State& state, const std::string& method, bool in_scene) {
-  const Frame& f = frame_for(int(state.range(0)));
+void walk(benchmark::State& state, const std::string& method, bool in_scene, bool diffuse_only = true) {
+  const Frame& f = frame_for(int(state.range(0)), diffuse_only);
   std::unique_ptr<sst::IndirectSampler> sampler = make_sampler(method);
   sst::StageTimer timer;
   nlohmann::json counters;
@@ -138,10 +142,13 @@ void walk(benchmark::State& state, const std::string& method, bool in_scene) {
 
 void BM_TreeWalk(benchmark::State& state, std::string method) { walk(state, method, true); }
 void BM_TreeWalkNoScene(benchmark::State& state, std::string method) { walk(state, method, false); }
+void BM_TreeWalkNoSceneMaterials(benchmark::State& state, std::string method) { walk(state, method, false, false); }
 
 BENCHMARK_CAPTURE(BM_TreeWalk, slc, std::string("slc"))->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_TreeWalk, sst, std::string("sst"))->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_TreeWalkNoScene, slc, std::string("slc"))->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_TreeWalkNoScene, sst, std::string("sst"))->Arg(10000)->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_TreeWalkNoSceneMaterials, slc, std::string("slc"))->Arg(100000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_TreeWalkNoSceneMaterials, sst, std::string("sst"))->Arg(100000)->Unit(benchmark::kMillisecond);
 
 }  // namespace

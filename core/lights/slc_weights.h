@@ -15,21 +15,18 @@ SST_BEGIN
 // lum_k; an empty box (no light below it) weighs 0 and never makes x "near".
 SST_FUNC vec2 slc_pair_weights(vec3 lo0, vec3 hi0, float lum0, bool empty0, vec3 lo1, vec3 hi1, float lum1,
                                bool empty1, vec3 x, SST_IN(Basis) frame) {
-  float base[2];
-  float d2[2];
-  bool near = false;
-  for (int k = 0; k < 2; ++k) {
-    vec3 lo = k == 0 ? lo0 : lo1;
-    vec3 hi = k == 0 ? hi0 : hi1;
-    bool empty = k == 0 ? empty0 : empty1;
-    SST_PRECISE float b = (k == 0 ? lum0 : lum1) * box_cos_bound_in_frame(lo, hi, x, frame);
-    base[k] = empty ? 0.0f : b;
-    d2[k] = empty ? 0.0f : box_distance2_min(lo, hi, x);
-    // <= rather than <: a point box (diagonal 0) at x itself must not divide by 0.
-    if (!empty && d2[k] <= box_diagonal2(lo, hi)) near = true;
-  }
-  if (near) return vec2(base[0], base[1]);
-  return vec2(base[0] > 0.0f ? base[0] / d2[0] : 0.0f, base[1] > 0.0f ? base[1] / d2[1] : 0.0f);
+  vec2 cos_bound = box_cos_bound_pair_in_frame(lo0, hi0, lo1, hi1, x, frame);
+  SST_PRECISE float b0 = lum0 * cos_bound.x;
+  SST_PRECISE float b1 = lum1 * cos_bound.y;
+  float base0 = empty0 ? 0.0f : b0;
+  float base1 = empty1 ? 0.0f : b1;
+  float d2_0 = empty0 ? 0.0f : box_distance2_min(lo0, hi0, x);
+  float d2_1 = empty1 ? 0.0f : box_distance2_min(lo1, hi1, x);
+  // <= rather than <: a point box (diagonal 0) at x itself must not divide by 0.
+  bool near = (!empty0 && d2_0 <= box_diagonal2(lo0, hi0)) || (!empty1 && d2_1 <= box_diagonal2(lo1, hi1));
+  if (near) return vec2(base0, base1);
+  SST_PRECISE lanes4 w = lanes4(base0, base1, 0.0f, 0.0f) / lanes4(d2_0, d2_1, 1.0f, 1.0f);
+  return vec2(base0 > 0.0f ? w[0] : 0.0f, base1 > 0.0f ? w[1] : 0.0f);
 }
 
 SST_END

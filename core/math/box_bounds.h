@@ -52,14 +52,12 @@ SST_FUNC vec2 box_corner_dot_range(vec3 dl, vec3 dh, vec3 a) {
   return vec2(lo, hi);
 }
 
-// box_cos_bound with n's basis `frame` = basis_from_normal(n) given: a walk takes it from its
-// shading point instead of building it at every node. The box_corner_dot_range of the frame's
-// three axes run side by side in lanes (lane j: axis j of t, b, n; lane 3 unused), each lane with
-// box_corner_dot_range's products and sums in its order, so the bits are the same: a third of the
-// operations, in SIMD registers on the CPU (lanes4, cpu_gpu.h).
-SST_FUNC float box_cos_bound_in_frame(vec3 lo, vec3 hi, vec3 x, SST_IN(Basis) frame) {
-  if (box_empty(lo, hi)) return 0.0f;
-  if (box_inside(lo, hi, x)) return 1.0f;
+// The box of the corners of [lo, hi] - x in the frame's coordinates: lanes 0, 1, 2 of llo and lhi
+// hold box_corner_dot_range for the axes t, b, n (lane 3 unused). The three ranges run side by
+// side, each lane with box_corner_dot_range's products and sums in its order, so the bits are the
+// same: a third of the operations, in SIMD registers on the CPU (lanes4, cpu_gpu.h).
+SST_FUNC void box_corners_in_frame(vec3 lo, vec3 hi, vec3 x, SST_IN(Basis) frame, SST_OUT(lanes4) llo,
+                                   SST_OUT(lanes4) lhi) {
   SST_PRECISE vec3 dl = lo - x;
   SST_PRECISE vec3 dh = hi - x;
   lanes4 ax = lanes4(frame.t.x, frame.b.x, frame.n.x, 0.0f);
@@ -71,15 +69,66 @@ SST_FUNC float box_cos_bound_in_frame(vec3 lo, vec3 hi, vec3 x, SST_IN(Basis) fr
   SST_PRECISE lanes4 phx = dh.x * ax;
   SST_PRECISE lanes4 phy = dh.y * ay;
   SST_PRECISE lanes4 phz = dh.z * az;
-  // The box of the corners in the frame: lanes 0, 1, 2 of llo and lhi.
-  SST_PRECISE lanes4 llo = min(plx, phx) + min(ply, phy) + min(plz, phz);
-  SST_PRECISE lanes4 lhi = max(plx, phx) + max(ply, phy) + max(plz, phz);
-  float hz = lhi[2];
-  if (!(hz > 0.0f)) return 0.0f;  // wholly below the tangent plane
-  float dx = box_min_abs(llo[0], lhi[0]);
-  float dy = box_min_abs(llo[1], lhi[1]);
-  SST_PRECISE float len2 = dx * dx + dy * dy + hz * hz;
-  return len2 > 0.0f ? min(1.0f, hz / sqrt(len2)) : 1.0f;
+  SST_PRECISE lanes4 lo_sum = min(plx, phx) + min(ply, phy) + min(plz, phz);
+  SST_PRECISE lanes4 hi_sum = max(plx, phx) + max(ply, phy) + max(plz, phz);
+  llo = lo_sum;
+  lhi = hi_sum;
+}
+
+// The last steps of the cosine bound for up to four boxes side by side (lane k: box k), from
+// their corner boxes in the frame: the ranges along t (tlo, thi) and b (blo, bhi) and the top hz
+// along n. Returns min(1, hz / |p|), p the corner box's point nearest to the normal's axis, and
+// |p|^2 in len2; valid where hz > 0 and len2 > 0 (box_cos_bound_pick). An interval [lo, hi] lies
+// max(lo, 0) + max(-hi, 0) from 0: box_min_abs's value up to the sign of a zero, which the squares
+// drop, without its branch.
+SST_FUNC lanes4 box_cos_bound_lanes(lanes4 tlo, lanes4 thi, lanes4 blo, lanes4 bhi, lanes4 hz, SST_OUT(lanes4) len2) {
+  lanes4 zero = lanes4(0.0f, 0.0f, 0.0f, 0.0f);
+  SST_PRECISE lanes4 dx = max(tlo, zero) + max(zero - thi, zero);
+  SST_PRECISE lanes4 dy = max(blo, zero) + max(zero - bhi, zero);
+  SST_PRECISE lanes4 l2 = dx * dx + dy * dy + hz * hz;
+  len2 = l2;
+  SST_PRECISE lanes4 q = hz / sqrt(l2);
+  return min(lanes4(1.0f, 1.0f, 1.0f, 1.0f), q);
+}
+
+// One box's bound from its lane of box_cos_bound_lanes (c, len2) and its top hz: 0 for an empty box
+// or one wholly below the tangent plane, 1 when x is inside it.
+SST_FUNC float box_cos_bound_pick(vec3 lo, vec3 hi, vec3 x, float hz, float len2, float c) {
+  if (box_empty(lo, hi)) return 0.0f;
+  if (box_inside(lo, hi, x)) return 1.0f;
+  if (!(hz > 0.0f)) return 0.0f;
+  return len2 > 0.0f ? c : 1.0f;
+}
+
+// box_cos_bound with n's basis `frame` = basis_from_normal(n) given: a walk takes it from its
+// shading point instead of building it at every node.
+SST_FUNC float box_cos_bound_in_frame(vec3 lo, vec3 hi, vec3 x, SST_IN(Basis) frame) {
+  if (box_empty(lo, hi)) return 0.0f;
+  if (box_inside(lo, hi, x)) return 1.0f;
+  lanes4 llo;
+  lanes4 lhi;
+  box_corners_in_frame(lo, hi, x, frame, llo, lhi);
+  lanes4 len2;
+  lanes4 c = box_cos_bound_lanes(lanes4(llo[0], 0.0f, 0.0f, 0.0f), lanes4(lhi[0], 0.0f, 0.0f, 0.0f),
+                                 lanes4(llo[1], 0.0f, 0.0f, 0.0f), lanes4(lhi[1], 0.0f, 0.0f, 0.0f),
+                                 lanes4(lhi[2], 0.0f, 0.0f, 0.0f), len2);
+  return box_cos_bound_pick(lo, hi, x, lhi[2], len2[0], c[0]);
+}
+
+// box_cos_bound_in_frame of two boxes, their last steps side by side.
+SST_FUNC vec2 box_cos_bound_pair_in_frame(vec3 lo0, vec3 hi0, vec3 lo1, vec3 hi1, vec3 x, SST_IN(Basis) frame) {
+  lanes4 llo0;
+  lanes4 lhi0;
+  lanes4 llo1;
+  lanes4 lhi1;
+  box_corners_in_frame(lo0, hi0, x, frame, llo0, lhi0);
+  box_corners_in_frame(lo1, hi1, x, frame, llo1, lhi1);
+  lanes4 len2;
+  lanes4 c = box_cos_bound_lanes(lanes4(llo0[0], llo1[0], 0.0f, 0.0f), lanes4(lhi0[0], lhi1[0], 0.0f, 0.0f),
+                                 lanes4(llo0[1], llo1[1], 0.0f, 0.0f), lanes4(lhi0[1], lhi1[1], 0.0f, 0.0f),
+                                 lanes4(lhi0[2], lhi1[2], 0.0f, 0.0f), len2);
+  return vec2(box_cos_bound_pick(lo0, hi0, x, lhi0[2], len2[0], c[0]),
+              box_cos_bound_pick(lo1, hi1, x, lhi1[2], len2[1], c[1]));
 }
 
 SST_FUNC float box_cos_bound(vec3 lo, vec3 hi, vec3 x, vec3 n) {

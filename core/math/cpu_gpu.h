@@ -15,8 +15,8 @@
 //   GLM_FORCE_XYZW_ONLY); v.x or v[i].
 // - lanes4: four floats operated on lane by lane, for one scalar computation run four times side
 //   by side (GLSL: vec4; C++: one SIMD register, which glm's vec4 does not compile to). Only what
-//   is defined below: lanes4(a, b, c, d), l[i] (read), +, -, * (by lanes4 or a float), min, max,
-//   each lane rounding as the scalar operation would.
+//   is defined below: lanes4(a, b, c, d), l[i] (read), +, -, * (by lanes4 or a float), /, min,
+//   max, sqrt, each lane rounding as the scalar operation would.
 // - Built-ins with GLSL's names: abs, min, max, clamp, sqrt, floor, dot, cross, length, normalize,
 //   floatBitsToUint, uintBitsToFloat, bitfieldReverse, findMSB, isnan, isinf, exp, pow (glm and
 //   <cmath> provide most of them in C++). exp and pow are the drivers' own, so a kernel using them
@@ -90,6 +90,14 @@ inline lanes4 operator-(lanes4 a, lanes4 b) { return lanes4(a.v - b.v); }
 inline lanes4 operator*(lanes4 a, lanes4 b) { return lanes4(a.v * b.v); }
 inline lanes4 operator*(float s, lanes4 a) { return lanes4(s * a.v); }
 inline lanes4 operator*(lanes4 a, float s) { return lanes4(a.v * s); }
+inline lanes4 operator/(lanes4 a, lanes4 b) { return lanes4(a.v / b.v); }
+inline lanes4 sqrt(lanes4 a) {
+#if defined(__SSE__)
+  return lanes4(__builtin_ia32_sqrtps(a.v));
+#else
+  return lanes4(std::sqrt(a.v[0]), std::sqrt(a.v[1]), std::sqrt(a.v[2]), std::sqrt(a.v[3]));
+#endif
+}
 inline lanes4 min(lanes4 x, lanes4 y) { return lanes4(y.v < x.v ? y.v : x.v); }  // glm::min
 inline lanes4 max(lanes4 x, lanes4 y) { return lanes4(x.v < y.v ? y.v : x.v); }  // glm::max
 }  // namespace sst

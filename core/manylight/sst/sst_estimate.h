@@ -73,9 +73,10 @@ SST_FUNC vec3 sst_glossy_direction(vec3 x, vec3 r, vec3 inv_r, vec3 lo, vec3 hi)
   return len > 0.0f ? dn : r;
 }
 
-// M: the lobe's BRDF bound times the cosine bound over the node's box (sp.brdf: the lobe's part).
-SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b) {
-  float cos_bound = box_cos_bound_in_frame(node.bounds_lo, node.bounds_hi, sp.p, sp.basis);
+// M: the lobe's BRDF bound times the cosine bound over the node's box (box_cos_bound_in_frame of
+// its box, given; sp.brdf: the lobe's part).
+SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b,
+                                  float cos_bound) {
   if (!(cos_bound > 0.0f)) return 0.0f;
   if (!b.glossy) {
     SST_PRECISE float m = b.diffuse_scale * cos_bound;
@@ -88,16 +89,25 @@ SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) s
   return m;
 }
 
-// w = M * G * I, G = 1 / max(d^2, eps^2).
-SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b) {
+// w = M * G * I, G = 1 / max(d^2, eps^2); cos_bound: box_cos_bound_in_frame of the node's box.
+SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b,
+                               float cos_bound) {
   if (light_node_empty(node)) return 0.0f;
   float intensity = luminance(node.intensity);
   if (!(intensity > 0.0f)) return 0.0f;
-  float m = sst_material_bound(node, sp, b);
+  float m = sst_material_bound(node, sp, b, cos_bound);
   if (!(m > 0.0f)) return 0.0f;
   float g = 1.0f / max(box_distance2_min(node.bounds_lo, node.bounds_hi, sp.p), b.eps2);
   SST_PRECISE float w = m * g * intensity;
   return w;
+}
+
+// (w_left, w_right): the two children's cosine bounds side by side (box_cos_bound_pair_in_frame).
+SST_FUNC vec2 sst_child_weights(SST_IN(LightNode) left, SST_IN(LightNode) right, SST_IN(ShadingPoint) sp,
+                                SST_IN(SstWalkBound) b) {
+  vec2 cos_bound =
+      box_cos_bound_pair_in_frame(left.bounds_lo, left.bounds_hi, right.bounds_lo, right.bounds_hi, sp.p, sp.basis);
+  return vec2(sst_node_weight(left, sp, b, cos_bound.x), sst_node_weight(right, sp, b, cos_bound.y));
 }
 
 // The part of the BRDF the lobe shades.
@@ -170,7 +180,7 @@ SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
       e.value = divide_by_probability(c, tree_probability_times(walk.probability, p_lobe));
       break;
     }
-    vec2 w = vec2(sst_node_weight(ML_NODE(node.left), lp, bound), sst_node_weight(ML_NODE(node.right), lp, bound));
+    vec2 w = sst_child_weights(ML_NODE(node.left), ML_NODE(node.right), lp, bound);
     tree_walk_step(walk, node, w, ps);
   }
   e.nodes_visited = walk.nodes_visited;

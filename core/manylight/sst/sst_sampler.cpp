@@ -18,7 +18,8 @@ void validate(const SstParams& p) {
 ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe) {
   SstWalkBound bound = sst_walk_bound(point, lobe == SstLobe::glossy, eps);
   return [&point, bound](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
-    return {sst_node_weight(l, point, bound), sst_node_weight(r, point, bound)};
+    vec2 w = sst_child_weights(l, r, point, bound);
+    return {w.x, w.y};
   };
 }
 

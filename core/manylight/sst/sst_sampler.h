@@ -71,7 +71,7 @@ void validate(const SstParams& p);
 
 enum class SstLobe { diffuse, glossy };
 
-// The weights of step 2 (sst_node_weight, sst_estimate.h) at `point`, whose brdf is the lobe's
+// The weights of step 2 (sst_child_weights, sst_estimate.h) at `point`, whose brdf is the lobe's
 // part of the BRDF (sst_lobe_brdf); eps as above. For exact stop probabilities in tests.
 ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe);
 // The stop rule of step 3 (leaves only for the glossy lobe or without substitutes).

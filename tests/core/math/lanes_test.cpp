@@ -1,6 +1,7 @@
-// lanes4 (core/math/cpu_gpu.h) against the scalar operations it runs side by side, and the one
-// kernel written with it, box_cos_bound_in_frame (core/math/box_bounds.h), against its scalar
-// form: the shared code's CPU/GPU equality rests on these being the same bits.
+// lanes4 (core/math/cpu_gpu.h) against the scalar operations it runs side by side, and the
+// kernels written with it, box_cos_bound_in_frame and box_cos_bound_pair_in_frame
+// (core/math/box_bounds.h), against their scalar form: the shared code's CPU/GPU equality rests on
+// these being the same bits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -26,7 +27,7 @@ TEST(Lanes4, EveryOperationIsTheScalarOneInEachLane) {
     for (float b : kSpecial) {
       lanes4 x(a, b, -a, 0.5f * b), y(b, a, -0.0f, b);
       lanes4 sum = x + y, difference = x - y, product = x * y, scaled = a * y, scaled_right = y * b;
-      lanes4 low = min(x, y), high = max(x, y);
+      lanes4 low = min(x, y), high = max(x, y), quotient = x / y, root = sqrt(x);
       for (int i = 0; i < 4; ++i) {
         SCOPED_TRACE(testing::Message() << a << " " << b << " lane " << i);
         EXPECT_EQ(bits(sum[i]), bits(x[i] + y[i]));
@@ -37,6 +38,10 @@ TEST(Lanes4, EveryOperationIsTheScalarOneInEachLane) {
         // glm's scalar choices, which the vec3 code these lanes replace made: min(-0, +0) = -0.
         EXPECT_EQ(bits(low[i]), bits(glm::min(x[i], y[i])));
         EXPECT_EQ(bits(high[i]), bits(glm::max(x[i], y[i])));
+        // A NaN's payload is the hardware's; that it is a NaN is what the scalar code sees.
+        float q = x[i] / y[i], r = std::sqrt(x[i]);
+        if (std::isnan(q)) EXPECT_TRUE(std::isnan(quotient[i])); else EXPECT_EQ(bits(quotient[i]), bits(q));
+        if (std::isnan(r)) EXPECT_TRUE(std::isnan(root[i])); else EXPECT_EQ(bits(root[i]), bits(r));
       }
     }
   }
@@ -56,12 +61,14 @@ float scalar_cos_bound(vec3 lo, vec3 hi, vec3 x, const Basis& frame) {
   return len2 > 0.0f ? std::min(1.0f, rz.y / std::sqrt(len2)) : 1.0f;
 }
 
+// Both the single bound and the pair (each box with the box drawn before it) against the scalar form.
 TEST(Lanes4, BoxCosBoundEqualsItsScalarFormToTheBit) {
   HashRng rng = hash_rng(11, 0, 0);
   auto uniform3 = [&](float scale) {
     return scale * (2.0f * vec3(hash_rng_next(rng), hash_rng_next(rng), hash_rng_next(rng)) - 1.0f);
   };
   int nonzero = 0;
+  vec3 previous_lo(0.0f), previous_hi(0.0f);
   for (int i = 0; i < 200000; ++i) {
     vec3 a = uniform3(1.0f), b = uniform3(1.0f);
     // Flat, point and empty boxes, and axis-aligned normals, now and then.
@@ -75,6 +82,11 @@ TEST(Lanes4, BoxCosBoundEqualsItsScalarFormToTheBit) {
     Basis frame = basis_from_normal(n);
     float expected = scalar_cos_bound(lo, hi, x, frame);
     ASSERT_EQ(bits(box_cos_bound_in_frame(lo, hi, x, frame)), bits(expected)) << i;
+    vec2 pair = box_cos_bound_pair_in_frame(previous_lo, previous_hi, lo, hi, x, frame);
+    ASSERT_EQ(bits(pair.x), bits(scalar_cos_bound(previous_lo, previous_hi, x, frame))) << i;
+    ASSERT_EQ(bits(pair.y), bits(expected)) << i;
+    previous_lo = lo;
+    previous_hi = hi;
     nonzero += expected > 0.0f && expected < 1.0f;
   }
   EXPECT_GT(nonzero, 50000);  // the comparison reached the bound's arithmetic, not only its early outs

@@ -103,8 +103,6 @@ SST_FUNC float box_cos_bound_pick(vec3 lo, vec3 hi, vec3 x, float hz, float len2
 // box_cos_bound with n's basis `frame` = basis_from_normal(n) given: a walk takes it from its
 // shading point instead of building it at every node.
 SST_FUNC float box_cos_bound_in_frame(vec3 lo, vec3 hi, vec3 x, SST_IN(Basis) frame) {
-  if (box_empty(lo, hi)) return 0.0f;
-  if (box_inside(lo, hi, x)) return 1.0f;
   lanes4 llo;
   lanes4 lhi;
   box_corners_in_frame(lo, hi, x, frame, llo, lhi);

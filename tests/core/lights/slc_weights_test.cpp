@@ -1,9 +1,8 @@
 // slc_pair_weights (core/lights/slc_weights.h), whose two boxes' bounds and divisions run side by
-// side in lanes, against its scalar form, to the bit: slc's walks and the emitter tree's slc light
-// sampler on both backends take their choices from these weights.
+// side in lanes, against its one-box-at-a-time form, to the bit: slc's walks and the emitter
+// tree's slc light sampler on both backends take their choices from these weights.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <utility>
@@ -16,26 +15,16 @@ namespace {
 
 uint32_t bits(float f) { return std::bit_cast<uint32_t>(f); }
 
-// The weights one box at a time, with the bound's scalar form (box_corner_dot_range per axis).
-vec2 scalar_pair_weights(vec3 lo0, vec3 hi0, float lum0, bool empty0, vec3 lo1, vec3 hi1, float lum1, bool empty1,
-                         vec3 x, const Basis& frame) {
-  auto cos_bound = [&](vec3 lo, vec3 hi) {
-    if (box_empty(lo, hi)) return 0.0f;
-    if (box_inside(lo, hi, x)) return 1.0f;
-    vec3 dl = lo - x, dh = hi - x;
-    vec2 rx = box_corner_dot_range(dl, dh, frame.t), ry = box_corner_dot_range(dl, dh, frame.b);
-    vec2 rz = box_corner_dot_range(dl, dh, frame.n);
-    if (!(rz.y > 0.0f)) return 0.0f;
-    float dx = box_min_abs(rx.x, rx.y), dy = box_min_abs(ry.x, ry.y);
-    float len2 = dx * dx + dy * dy + rz.y * rz.y;
-    return len2 > 0.0f ? std::min(1.0f, rz.y / std::sqrt(len2)) : 1.0f;
-  };
+// The weights one box at a time, as they were written before the pair: box_cos_bound_in_frame
+// per box (itself held to its scalar form by Lanes4.BoxCosBoundEqualsItsScalarFormToTheBit).
+vec2 weights_one_box_at_a_time(vec3 lo0, vec3 hi0, float lum0, bool empty0, vec3 lo1, vec3 hi1, float lum1,
+                               bool empty1, vec3 x, const Basis& frame) {
   float base[2], d2[2];
   bool near = false;
   for (int k = 0; k < 2; ++k) {
     vec3 lo = k == 0 ? lo0 : lo1, hi = k == 0 ? hi0 : hi1;
     bool empty = k == 0 ? empty0 : empty1;
-    float b = (k == 0 ? lum0 : lum1) * cos_bound(lo, hi);
+    float b = (k == 0 ? lum0 : lum1) * box_cos_bound_in_frame(lo, hi, x, frame);
     base[k] = empty ? 0.0f : b;
     d2[k] = empty ? 0.0f : box_distance2_min(lo, hi, x);
     if (!empty && d2[k] <= box_diagonal2(lo, hi)) near = true;
@@ -68,7 +57,7 @@ TEST(SlcWeights, PairWeightsEqualTheirScalarFormToTheBit) {
     vec3 n = i % 5 == 0 ? vec3(0.0f, 0.0f, i % 10 == 0 ? 1.0f : -1.0f) : glm::normalize(uniform3(1.0f));
     if (!std::isfinite(n.x)) continue;
     Basis frame = basis_from_normal(n);
-    vec2 expected = scalar_pair_weights(lo0, hi0, lum0, empty0, lo1, hi1, lum1, empty1, x, frame);
+    vec2 expected = weights_one_box_at_a_time(lo0, hi0, lum0, empty0, lo1, hi1, lum1, empty1, x, frame);
     vec2 w = slc_pair_weights(lo0, hi0, lum0, empty0, lo1, hi1, lum1, empty1, x, frame);
     ASSERT_EQ(bits(w.x), bits(expected.x)) << i;
     ASSERT_EQ(bits(w.y), bits(expected.y)) << i;

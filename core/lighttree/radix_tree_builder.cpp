@@ -81,6 +81,10 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
       if (!store_leaves && i + kPrefetch < chunk_end) __builtin_prefetch(&vpls[sort_key_vpl(keys[i + kPrefetch])]);
       int first = i, last = i;  // the node just completed
       RadixTreeParent up = radix_tree_parent(keys, count, first, last);  // unused at the root
+      // That node once merged, kept for the next merge instead of read back from the array; a
+      // leaf is made only when merged.
+      LightNode done;
+      bool at_leaf = true;
       while (first != 0 || last != count - 1) {
         const int split = int(up.split);
         // Whether the parent reaches past the chunk: a key there shares its prefix.
@@ -108,9 +112,12 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
           first = int(other_end) - 1;
         const uint32_t left = radix_tree_index(count, first, split, true);
         const uint32_t right = radix_tree_index(count, split + 1, last, false);
+        const LightNode own = at_leaf ? tree.leaf(uint32_t(i)) : done;
+        done = up.left_side ? merge_children(own, left, tree.node(right), right, thresholds)
+                            : merge_children(tree.node(left), left, own, right, thresholds);
         up = radix_tree_parent(keys, count, first, last);  // the grandparent, for the next step
-        const uint32_t parent = radix_tree_index(count, first, last, up.left_side);
-        nodes[parent] = merge_children(tree.node(left), left, tree.node(right), right, thresholds);
+        nodes[radix_tree_index(count, first, last, up.left_side)] = done;
+        at_leaf = false;
       }
     }
   }, tbb::simple_partitioner());

@@ -84,7 +84,6 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
       // That node once merged, kept for the next merge instead of read back from the array; a
       // leaf is made only when merged.
       LightNode done;
-      bool at_leaf = true;
       while (first != 0 || last != count - 1) {
         const int split = int(up.split);
         // Whether the parent reaches past the chunk: a key there shares its prefix.
@@ -106,18 +105,17 @@ void build_radix_tree(const VplSet& vpls, const SubstituteThresholds& thresholds
           other_end = meet(split).exchange(own_end, std::memory_order_acq_rel);
           if (other_end == 0) break;
         }
+        const LightNode own = first == last ? tree.leaf(uint32_t(i)) : done;
         if (up.left_side)
           last = int(other_end) - 1;
         else
           first = int(other_end) - 1;
         const uint32_t left = radix_tree_index(count, first, split, true);
         const uint32_t right = radix_tree_index(count, split + 1, last, false);
-        const LightNode own = at_leaf ? tree.leaf(uint32_t(i)) : done;
         done = up.left_side ? merge_children(own, left, tree.node(right), right, thresholds)
                             : merge_children(tree.node(left), left, own, right, thresholds);
         up = radix_tree_parent(keys, count, first, last);  // the grandparent, for the next step
         nodes[radix_tree_index(count, first, last, up.left_side)] = done;
-        at_leaf = false;
       }
     }
   }, tbb::simple_partitioner());

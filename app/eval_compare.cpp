@@ -32,7 +32,7 @@ ImageMetrics metrics_of(const Input& test, const Input& reference) {
   return compare_images(linear_of(test), linear_of(reference), false);
 }
 
-void print_table(const CompareArgs& args, const ImageMetrics& m) {
+void print_table(const CompareArgs& args, const ImageMetrics& m, const MaskedErrors* masked) {
   std::printf("test       %s%s\n", args.test.c_str(),
               args.layer.empty() ? "" : (" [" + args.layer + "]").c_str());
   std::printf("reference  %s%s\n", args.reference.c_str(),
@@ -49,10 +49,16 @@ void print_table(const CompareArgs& args, const ImageMetrics& m) {
   if (m.nonfinite_test || m.nonfinite_reference)
     std::printf("nonfinite  %zu test, %zu reference pixels (counted as 0)\n", m.nonfinite_test,
                 m.nonfinite_reference);
+  if (masked)
+    std::printf("masked     %zu pixels where the mask is 0: rmse %.6g, rel_mse %.6g, mae %.6g\n", masked->pixels,
+                masked->rmse, masked->rel_mse, masked->mae);
 }
 
-void print_json(const CompareArgs& args, const ImageMetrics& m) {
+void print_json(const CompareArgs& args, const ImageMetrics& m, const MaskedErrors* masked) {
   nlohmann::json out = to_json(m);
+  if (masked)
+    out["masked"] = {{"mask", args.mask}, {"pixels", masked->pixels}, {"rmse", masked->rmse},
+                     {"rel_mse", masked->rel_mse}, {"mae", masked->mae}};
   out["test"] = args.test;
   out["reference"] = args.reference;
   out["layer"] = args.layer.empty() ? nlohmann::json(nullptr) : nlohmann::json(args.layer);
@@ -73,6 +79,9 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& args) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->add_option("--layer", args.layer, "Compare this EXR layer (e.g. indirect) of both files");
+  cmd->add_option("--mask", args.mask,
+                  "Also report rmse, rel_mse and mae over the pixels where this image is 0 (e.g. a render of "
+                  "the emitters alone: the pixels no visible emitter touches)");
   return cmd;
 }
 
@@ -84,12 +93,15 @@ int run_compare(const CompareArgs& args) {
     throw Error("cannot compare " + args.test + " (" + shape_string(test.values) + ") with " +
                 args.reference + " (" + shape_string(reference.values) + "): sizes differ");
   const ImageMetrics m = metrics_of(test, reference);
+  MaskedErrors masked;
+  if (!args.mask.empty()) masked = masked_errors(linear_of(test), linear_of(reference), linear_of(load(args.mask, "")));
+  const MaskedErrors* masked_or_null = args.mask.empty() ? nullptr : &masked;
   if (!args.heatmap.empty())
     write_image(args.heatmap, error_heatmap(linear_of(test), linear_of(reference), args.heatmap_max));
   if (args.json)
-    print_json(args, m);
+    print_json(args, m, masked_or_null);
   else
-    print_table(args, m);
+    print_table(args, m, masked_or_null);
   return 0;
 }
 

@@ -15,6 +15,7 @@ struct CompareArgs {
   std::string heatmap;       // where to write the relative-error heat map (empty: none)
   float heatmap_max = 1.0f;  // relative error shown as the brightest colour
   std::string layer;         // compare this EXR layer of both files instead of their RGB
+  std::string mask;          // also report the errors where this image is 0 (empty: none)
 };
 
 // Registers the subcommand on app, filling args when it is parsed.

@@ -212,4 +212,50 @@ Scene many_lights(uint32_t seed, int triangles, int points, int spots, bool sun)
   return s;
 }
 
+Scene light_field(uint32_t seed, int quads, int points, int spots) {
+  std::mt19937 rng(seed);
+  auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; };
+  auto direction = [&]() {
+    float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 6.2831853f), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    return vec3(r * std::cos(phi), z, r * std::sin(phi));
+  };
+  Scene s;
+  s.source = "generated:light_field";
+  s.materials.push_back(diffuse_material("ground", 0.4f, 0.0f));
+  add_quad(s, {-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, {20, 0, -20}, 0);
+  for (int k = 0; k < 32; ++k) {
+    Material m = diffuse_material("emitter", 0.0f, 2.0f * std::pow(100.0f, float(k / 4) / 7.0f));
+    m.emission *= vec3(1.0f, 0.6f + 0.1f * float(k % 4), 1.0f - 0.15f * float(k % 4));
+    m.double_sided = true;
+    s.materials.push_back(m);
+  }
+  for (int i = 0; i < quads; ++i) {
+    vec3 c(uniform(-19.5f, 19.5f), uniform(0.3f, 3.0f), uniform(-19.5f, 19.5f));
+    vec3 n = direction();
+    vec3 u = glm::normalize(glm::cross(n, std::abs(n.x) < 0.9f ? vec3(1, 0, 0) : vec3(0, 1, 0))) * (0.5f * uniform(0.05f, 0.15f));
+    vec3 v = glm::cross(n, u);
+    add_quad(s, c - u - v, c + u - v, c + u + v, c - u + v, 1u + uint32_t(rng() % 32u));
+  }
+  for (int i = 0; i < points + spots; ++i) {
+    vec3 color = vec3(uniform(0.5f, 1.0f), uniform(0.5f, 1.0f), uniform(0.5f, 1.0f));
+    if (i < points) {
+      vec3 pos(uniform(-19.0f, 19.0f), uniform(0.5f, 4.0f), uniform(-19.0f, 19.0f));
+      s.lights.push_back(punctual_light(LightType::Point, pos, vec3(0, -1, 0), color * std::pow(30.0f, uniform(0.0f, 1.0f))));
+    } else {
+      vec3 pos(uniform(-18.0f, 18.0f), uniform(3.0f, 6.0f), uniform(-18.0f, 18.0f));
+      float tilt = uniform(0.0f, 0.52f), yaw = uniform(0.0f, 6.2831853f);
+      vec3 aim(std::sin(tilt) * std::cos(yaw), -std::cos(tilt), std::sin(tilt) * std::sin(yaw));
+      PunctualLight l = punctual_light(LightType::Spot, pos, aim, color * 30.0f * std::pow(10.0f, uniform(0.0f, 1.0f)));
+      l.cos_inner = std::cos(0.3f);
+      l.cos_outer = std::cos(0.6f);
+      s.lights.push_back(l);
+    }
+  }
+  s.cameras.push_back(camera("main", {0, 14.0f, 30.0f}, 0.9f));
+  s.cameras.back().forward = glm::normalize(vec3(0.0f, -0.47f, -0.88f));
+  s.cameras.back().up = glm::normalize(glm::cross(glm::cross(s.cameras.back().forward, vec3(0, 1, 0)), s.cameras.back().forward));
+  s.finalize_bounds();
+  return s;
+}
+
 }  // namespace sst::test

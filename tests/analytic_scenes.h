@@ -37,6 +37,13 @@ void add_emissive_triangle(Scene& scene, vec3 a, vec3 b, vec3 c, vec3 emission, 
 // looking down at the floor. Everything from `seed`.
 Scene many_lights(uint32_t seed, int triangles, int points, int spots, bool sun);
 
+// A wide field of many small lights, for the light trees' tests: a 40 m diffuse ground (y = 0),
+// `quads` small double-sided emissive quads (sides 5-15 cm, two triangles each) at random places
+// in [-19.5, 19.5] x [0.3, 3] x [-19.5, 19.5] and random orientations, in 32 materials whose
+// radiance spans two orders of magnitude (2-200), `points` point lights (1-30 W/sr) and `spots`
+// spot lights (30-300 W/sr, aimed down within 30 degrees); no directional light. From `seed`.
+Scene light_field(uint32_t seed, int quads, int points, int spots);
+
 // Scales every position, light and camera of a scene by s (scene-scale tests).
 void scale_scene(Scene& scene, float s);
 

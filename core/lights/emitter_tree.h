@@ -14,11 +14,19 @@
 //   theta' = max(0, theta_w - theta_o - theta_b), where theta_w is the angle between the node's
 //   axis and the direction from the box centre to p (its absolute value for two-sided emitters)
 //   and theta_b the half angle the box's bounding sphere subtends from p; zero when
-//   theta' >= theta_e (nothing is emitted that way). d^2 is the squared distance from p to the
-//   box (not to its centre, as in pbrt), at least the squared radius of its bounding sphere: with
-//   the centre's distance, a point beside one window of a long row was given the row's far
-//   centre, the window a tiny probability, and the full path tracer fireflies (relative MSE on
-//   the night street at 16 spp 0.76 against 0.35 with this distance; power sampling 0.31).
+//   theta' >= theta_e (nothing is emitted that way). d^2 follows LightHeader.tree_distance
+//   (RenderOptions::light_tree_distance), r being the radius of the box's bounding sphere:
+//   - EMITTER_DISTANCE_CENTRE: the squared distance from p to the box's centre, at least
+//     (r/4)^2, as pbrt-v4 measures it (pbrt clamps it at half the diagonal's length, a bound in
+//     the scene's units). Inside a large node it still tells which part p is near.
+//   - EMITTER_DISTANCE_BOX: the squared distance from p to the box, at least r^2: never less
+//     than any emitter's distance, but flat wherever p lies within r of the box, so the walk's
+//     upper levels, whose boxes hold p, choose by intensity alone. With the morton tree the
+//     centre's distance had given a point beside one window of a long row the row's far
+//     centre, the window a tiny probability, and the full path tracer fireflies (relative MSE
+//     on the night street at 16 spp 0.76 against 0.35 with this distance; power 0.31).
+//   - EMITTER_DISTANCE_MIXED: the box's distance outside the bounding sphere, the centre's
+//     (clamped to [r^2/16, r^2]) within it: never less than `box`'s importance.
 //   cos_i bounds the receiver cosine over the box itself (box_cos_bound_linear, core/math/box_bounds.h), where pbrt uses
 //   cos(max(0, theta_i - theta_b)) over the bounding sphere: it is zero exactly when the whole
 //   box is behind the surface (where sst's BRDFs reflect nothing), so an inner node is zero from
@@ -61,8 +69,9 @@ SST_FUNC float sin_from_cos(float c) {
   return sqrt(max(0.0f, s2));
 }
 
-// The tree weight of `node` for p, n (see the top). n = 0: no receiver cosine.
-SST_FUNC float emitter_importance(SST_IN(EmitterNode) node, vec3 p, vec3 n) {
+// The tree weight of `node` for p, n (see the top) with distance rule `distance`
+// (EMITTER_DISTANCE_*). n = 0: no receiver cosine.
+SST_FUNC float emitter_importance(SST_IN(EmitterNode) node, vec3 p, vec3 n, uint distance) {
   if (!(node.intensity > 0.0f)) return 0.0f;
   if ((node.flags & EMITTER_DIRECTIONAL) != 0u) {
     float c = dot3(n, n) > 0.0f ? dot3(n, -node.axis) : 1.0f;
@@ -89,7 +98,10 @@ SST_FUNC float emitter_importance(SST_IN(EmitterNode) node, vec3 p, vec3 n) {
   float sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, node.cos_o);
   float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
   if (cos_p <= node.cos_e) return 0.0f;
-  float d2 = max(box_distance2_min(node.lo, node.hi, p), r2);
+  float d2 = max(d2_centre, r2 * 0.0625f);
+  if (distance == EMITTER_DISTANCE_BOX) d2 = max(box_distance2_min(node.lo, node.hi, p), r2);
+  if (distance == EMITTER_DISTANCE_MIXED)
+    d2 = max(box_distance2_min(node.lo, node.hi, p), clamp(d2_centre, r2 * 0.0625f, r2));
   float importance = node.intensity * cos_p / d2;
   if (dot3(n, n) > 0.0f) {
     float cos_i = box_cos_bound_linear(node.lo, node.hi, p, n);
@@ -99,17 +111,19 @@ SST_FUNC float emitter_importance(SST_IN(EmitterNode) node, vec3 p, vec3 n) {
   return max(importance, 0.0f);
 }
 
-// (w_left, w_right) of inner node `parent`'s children for p, n, under the header's sampler.
-// Infinite weights (a point light at p) win over finite ones; NaN weighs 0.
-SST_FUNC vec2 emitter_child_weights(LIGHT_CTX_PARAM uint parent, vec3 p, vec3 n) {
-  EmitterNode a = LIGHT_TREE(2u * parent);
-  EmitterNode b = LIGHT_TREE(2u * parent + 1u);
+// (w_left, w_right) of the sibling pair at `first` and `first + 1` (an inner node's children) for
+// p, n, under the header's sampler. Infinite weights (a point light at p) win over finite ones;
+// NaN weighs 0.
+SST_FUNC vec2 emitter_child_weights(LIGHT_CTX_PARAM uint first, vec3 p, vec3 n) {
+  EmitterNode a = LIGHT_TREE(first);
+  EmitterNode b = LIGHT_TREE(first + 1u);
   vec2 w;
   if (LIGHT_HEADER.sampler_kind == LIGHT_SAMPLER_SLC) {
     w = slc_pair_weights(a.lo, a.hi, a.intensity, !(a.intensity > 0.0f), b.lo, b.hi, b.intensity,
                          !(b.intensity > 0.0f), p, basis_from_normal(n));
   } else {
-    w = vec2(emitter_importance(a, p, n), emitter_importance(b, p, n));
+    uint distance = LIGHT_HEADER.tree_distance;
+    w = vec2(emitter_importance(a, p, n, distance), emitter_importance(b, p, n, distance));
   }
   if (isinf(w.x) || isinf(w.y)) w = vec2(isinf(w.x) ? 1.0f : 0.0f, isinf(w.y) ? 1.0f : 0.0f);
   if (isnan(w.x)) w.x = 0.0f;
@@ -123,7 +137,7 @@ SST_FUNC uint emitter_top_node(LIGHT_CTX_PARAM uint k) {
   return k < LIGHT_HEADER.directional_count ? 2u * LIGHT_HEADER.tree_leaves + k : 1u;
 }
 SST_FUNC float emitter_top_importance(LIGHT_CTX_PARAM uint k, vec3 p, vec3 n) {
-  float w = emitter_importance(LIGHT_TREE(emitter_top_node(LIGHT_CTX k)), p, n);
+  float w = emitter_importance(LIGHT_TREE(emitter_top_node(LIGHT_CTX k)), p, n, LIGHT_HEADER.tree_distance);
   return is_finite(w) ? w : (isinf(w) ? 3.0e38f : 0.0f);
 }
 // Candidate k's weight, given the root's (`root`, from emitter_top_total): the root's importance
@@ -148,12 +162,12 @@ SST_FUNC float emitter_top_total(LIGHT_CTX_PARAM vec3 p, vec3 n, SST_OUT(float) 
 // leaf's share. emitter_tree_pick walks from the root; RTSLC's direct light from each node of a
 // block's cut (core/manylight/rtslc/rtslc_direct.h).
 SST_FUNC uint emitter_tree_descend(LIGHT_CTX_PARAM uint node, vec3 p, vec3 n, SST_INOUT(float) u, SST_INOUT(float) prob) {
-  uint leaves = LIGHT_HEADER.tree_leaves;
   // Locals, not the references: in C++ a write through a float& may alias the tree's floats.
   float v = u;
   float q = prob;
-  while (node < leaves) {
-    vec2 cw = emitter_child_weights(LIGHT_CTX node, p, n);
+  uint children = LIGHT_TREE(node).children;
+  while (children != 0u) {
+    vec2 cw = emitter_child_weights(LIGHT_CTX children, p, n);
     float sum = cw.x + cw.y;
     if (!(sum > 0.0f)) {
       u = v;
@@ -163,14 +177,15 @@ SST_FUNC uint emitter_tree_descend(LIGHT_CTX_PARAM uint node, vec3 p, vec3 n, SS
     float p_left = cw.x / sum;
     float p_right = cw.y / sum;
     if (v < p_left) {
-      node = 2u * node;
+      node = children;
       v = min(v / p_left, kOneMinusEpsilon);
       q *= p_left;
     } else {
-      node = 2u * node + 1u;
+      node = children + 1u;
       v = clamp((v - p_left) / (1.0f - p_left), 0.0f, kOneMinusEpsilon);
       q *= p_right;
     }
+    children = LIGHT_TREE(node).children;
   }
   u = v;
   prob = q;
@@ -231,14 +246,32 @@ SST_FUNC void emitter_tree_pmf(LIGHT_CTX_PARAM vec3 p, vec3 n, uint entry, SST_O
   if (!(w > 0.0f)) return;
   float prob = w / total;
   if (node < 2u * leaves) {
-    for (int d = findMSB(leaves) - 1; d >= 0; --d) {
-      uint child = node >> uint(d);
-      vec2 cw = emitter_child_weights(LIGHT_CTX child >> 1u, p, n);
+    // The path from the root, read upward through the parents: bit k of (trail_lo, trail_hi)
+    // tells which child was taken k levels above the leaf (the build keeps the depth within
+    // kEmitterTreeMaxDepth = 64). Then the choices are multiplied from the root down, as the
+    // pick multiplies them.
+    uint trail_lo = 0u;
+    uint trail_hi = 0u;
+    uint depth = 0u;
+    for (uint c = node; c != 1u && depth < 64u; ++depth) {
+      uint parent = LIGHT_TREE(c).parent;
+      uint bit = c - LIGHT_TREE(parent).children;
+      if (depth < 32u) trail_lo |= bit << depth;
+      else trail_hi |= bit << (depth - 32u);
+      c = parent;
+    }
+    uint at = 1u;
+    for (uint d = depth; d > 0u; --d) {
+      uint k = d - 1u;
+      uint bit = ((k < 32u ? trail_lo >> k : trail_hi >> (k - 32u)) & 1u);
+      uint first = LIGHT_TREE(at).children;
+      vec2 cw = emitter_child_weights(LIGHT_CTX first, p, n);
       float sum = cw.x + cw.y;
       if (!(sum > 0.0f)) return;
       float p_left = cw.x / sum;
       float p_right = cw.y / sum;
-      prob *= (child & 1u) == 0u ? p_left : p_right;
+      prob *= bit == 0u ? p_left : p_right;
+      at = first + bit;
     }
   }
   pmf = prob;

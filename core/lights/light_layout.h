@@ -16,10 +16,11 @@
 //   uint              light_of_triangle[]     scene triangle -> distribution entry, or
 //                                             LIGHT_NONE for a triangle that does not emit
 //   EmitterNode       light_tree[]            the emitter tree of the tree and slc samplers
-//                                             (core/lights/emitter_tree.h): a heap, root 1,
-//                                             children 2i and 2i + 1, leaves tree_leaves ..
-//                                             2 tree_leaves - 1, then one node per directional
-//                                             light; empty for the uniform and power samplers
+//                                             (core/lights/emitter_tree.h): root 1, nodes
+//                                             1 .. 2 tree_leaves - 1 linked by their
+//                                             `children` and `parent`, then one node per
+//                                             directional light; empty for the uniform and
+//                                             power samplers
 // An empty array is bound as a small dummy buffer; nothing indexes it.
 //
 // The distribution's CDF is summed in double. Each cdf value is kept as a pair of floats
@@ -54,6 +55,12 @@ using glm::vec3;
 #define LIGHT_SAMPLER_TREE 2u     // down the emitter tree by pbrt-v4's / Conty Estevez & Kulla's importance
 #define LIGHT_SAMPLER_SLC 3u      // down the same tree by Yuksel's (SLC) child weights
 
+// LightHeader.tree_distance: the distance in the tree samplers' importance (core/lights/
+// emitter_tree.h; RenderOptions::light_tree_distance).
+#define EMITTER_DISTANCE_CENTRE 0u  // to the box's centre, at least a quarter of its bounding radius
+#define EMITTER_DISTANCE_BOX 1u     // to the box, at least its bounding radius
+#define EMITTER_DISTANCE_MIXED 2u   // to the box outside the bounding sphere, to the centre within it
+
 // EmitterNode.flags.
 #define EMITTER_TWO_SIDED 1u      // emits about +axis and -axis (a double-sided emissive triangle)
 #define EMITTER_DIRECTIONAL 2u    // a directional light: `axis` is the direction its light travels
@@ -66,14 +73,16 @@ struct LightHeader {
   vec3 bounds_center;       // Scene::bounds.center(), for directional emission
   float bounds_radius;      // 0.5f * Scene::bounds.diagonal(), as the CPU computes it
   uint sampler_kind;        // LIGHT_SAMPLER_*
-  uint tree_leaves;         // leaf slots of the emitter tree, a power of two; 0 without a tree
+  uint tree_leaves;         // leaves of the emitter tree (morton build: padded to a power of two);
+                            // 0 without a tree
   uint directional_count;   // directional lights; tree samplers: nodes 2 tree_leaves ..
-  uint reserved;            // 0
+  uint tree_distance;       // EMITTER_DISTANCE_*
 };
 
 // A node of the emitter tree: what every emitter below it may send toward a point, bounded.
-// Leaves hold one light; an inner node bounds its two children; a padding leaf or a node over
-// padding only has intensity 0 (and is never picked).
+// Leaves hold one light; an inner node bounds its two children, which lie side by side at
+// `children` and `children + 1` (core/lights/emitter_tree_build.h lays them out); a padding leaf
+// or a node over padding only has intensity 0 (and is never picked).
 struct EmitterNode {
   vec3 lo;          // box of the emitters' points (a point light: its position)
   float intensity;  // summed luminance of the radiant intensity toward the axis: point and spot
@@ -85,8 +94,8 @@ struct EmitterNode {
   float cos_e;      // cosine of theta_e: beyond theta_o + theta_e from the axis nothing is emitted
   uint flags;       // EMITTER_*
   uint entry;       // leaf: the distribution entry of its light; LIGHT_NONE otherwise
-  uint reserved0;   // 0
-  uint reserved1;   // 0
+  uint children;    // inner node: the index of its first child; 0 for a leaf (node 0 is unused)
+  uint parent;      // the index of its parent; 0 for the root and for a directional light
 };
 
 // One KHR_lights_punctual light (sst::PunctualLight), radiometric.
@@ -117,9 +126,11 @@ struct LightEmissive {
 static_assert(sizeof(LightHeader) == 48);
 static_assert(offsetof(LightHeader, bounds_center) == 16 && offsetof(LightHeader, bounds_radius) == 28);
 static_assert(offsetof(LightHeader, sampler_kind) == 32 && offsetof(LightHeader, directional_count) == 40);
+static_assert(offsetof(LightHeader, tree_distance) == 44);
 static_assert(sizeof(EmitterNode) == 64 && offsetof(EmitterNode, hi) == 16 && offsetof(EmitterNode, cos_o) == 28);
 static_assert(offsetof(EmitterNode, axis) == 32 && offsetof(EmitterNode, cos_e) == 44);
 static_assert(offsetof(EmitterNode, flags) == 48 && offsetof(EmitterNode, entry) == 52);
+static_assert(offsetof(EmitterNode, children) == 56 && offsetof(EmitterNode, parent) == 60);
 static_assert(sizeof(LightPunctual) == 48);
 static_assert(offsetof(LightPunctual, type) == 12 && offsetof(LightPunctual, direction) == 16);
 static_assert(offsetof(LightPunctual, cos_inner) == 28 && offsetof(LightPunctual, intensity) == 32);

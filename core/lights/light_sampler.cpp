@@ -124,7 +124,8 @@ size_t PackedLights::bytes() const {
          light_of_triangle.size() * sizeof(uint32_t) + tree.size() * sizeof(glsl::EmitterNode);
 }
 
-LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&scene), kind_(kind) {
+LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind, EmitterTreeBuild build, EmitterDistance distance)
+    : scene_(&scene), kind_(kind) {
   const bool tree = kind == LightSamplerKind::Tree || kind == LightSamplerKind::Slc;
   // Per material: the luminance of its mean emitted radiance, and the power per unit area.
   std::vector<float> material_radiance(scene.materials.size(), 0.0f);
@@ -187,6 +188,7 @@ LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&
   h.bounds_center = scene.bounds.center();
   h.bounds_radius = 0.5f * scene.bounds.diagonal();
   h.sampler_kind = uint32_t(kind);
+  h.tree_distance = uint32_t(distance);
   packed_.punctual.reserve(scene.lights.size());
   for (const PunctualLight& l : scene.lights) {
     glsl::LightPunctual p{};
@@ -204,7 +206,7 @@ LightSampler::LightSampler(const Scene& scene, LightSamplerKind kind) : scene_(&
       packed_.distribution.push_back(cdf_entry(distribution_.cdf()[i], distribution_.pmfs()[i]));
   }
   if (tree && !distribution_.empty()) {
-    EmitterTree built = build_emitter_tree(leaves);
+    EmitterTree built = build_emitter_tree(leaves, build);
     h.tree_leaves = built.leaves;
     h.directional_count = built.directional_count;
     for (size_t i = 0; i < packed_.distribution.size(); ++i) packed_.distribution[i].tree_node = built.node_of_entry[i];

@@ -66,7 +66,11 @@ namespace sst {
 class LightSampler {
  public:
   LightSampler() = default;
-  explicit LightSampler(const Scene& scene, LightSamplerKind kind = LightSamplerKind::Power);
+  // `build`: how the tree and slc samplers' emitter tree is built; `distance`: the tree
+  // sampler's distance rule (core/lights/emitter_tree_build.h).
+  explicit LightSampler(const Scene& scene, LightSamplerKind kind = LightSamplerKind::Power,
+                        EmitterTreeBuild build = EmitterTreeBuild::Saoh,
+                        EmitterDistance distance = EmitterDistance::Centre);
 
   bool empty() const { return distribution_.empty(); }
   size_t light_count() const { return distribution_.size(); }

@@ -104,6 +104,36 @@ nlohmann::json number_or_null(double v) {
 
 }  // namespace
 
+MaskedErrors masked_errors(const Image& test, const Image& reference, const Image& mask) {
+  require_same_shape(test, reference);
+  if (mask.width != test.width || mask.height != test.height)
+    throw Error("the mask is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", the images " +
+                std::to_string(test.width) + "x" + std::to_string(test.height));
+  MaskedErrors e;
+  double squared = 0.0, relative = 0.0, absolute = 0.0;
+  for (int y = 0; y < test.height; ++y)
+    for (int x = 0; x < test.width; ++x) {
+      if (mask.rgb(x, y) != vec3(0.0f)) continue;
+      ++e.pixels;
+      for (int c = 0; c < test.channels; ++c) {
+        const size_t i = (size_t(y) * test.width + x) * test.channels + c;
+        const double t = std::isfinite(test.data[i]) ? test.data[i] : 0.0;
+        const double r = std::isfinite(reference.data[i]) ? reference.data[i] : 0.0;
+        const double d = t - r;
+        squared += d * d;
+        relative += d * d / (r * r + 0.01);
+        absolute += std::abs(d);
+      }
+    }
+  const double n = double(e.pixels) * test.channels;
+  if (n > 0) {
+    e.rmse = std::sqrt(squared / n);
+    e.rel_mse = relative / n;
+    e.mae = absolute / n;
+  }
+  return e;
+}
+
 ImageMetrics compare_images(const Image& test, const Image& reference, bool inputs_are_display) {
   require_same_shape(test, reference);
   const Prepared t = prepare(test, inputs_are_display);

@@ -39,6 +39,16 @@ ImageMetrics compare_images(const Image& test, const Image& reference, bool inpu
 // Every field, snake_case; mean_* as [r, g, b]; non-finite numbers as null.
 nlohmann::json to_json(const ImageMetrics& metrics);
 
+// The errors over the pixels where `mask` is 0 in its RGB (e.g. the pixels that no directly
+// visible emitter touches, from a render of the emitters alone): rmse, rel_mse and mae as
+// ImageMetrics defines them, over those pixels' channels. Non-finite values count as 0. Throws
+// sst::Error when the three sizes differ.
+struct MaskedErrors {
+  size_t pixels = 0;  // pixels where the mask is 0
+  double rmse = 0.0, rel_mse = 0.0, mae = 0.0;
+};
+MaskedErrors masked_errors(const Image& test, const Image& reference, const Image& mask);
+
 // Flicker of a sequence between two consecutive frames: the mean squared difference between the
 // test's frame-to-frame change and the reference's, over all pixels and channels,
 //   mean(((t1 - t0) - (r1 - r0))^2),

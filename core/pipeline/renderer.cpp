@@ -64,7 +64,9 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   check_coordinates(scene);  // before Embree sees a vertex it cannot bound
   accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel == "flat"); });
   lights_ = timer.time("light_setup", [&] {
-    return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler));
+    return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler),
+                                          parse_emitter_tree_build(options_.light_tree),
+                                          parse_emitter_distance(options_.light_tree_distance));
   });
 #ifdef SST_HAVE_VULKAN
   if (options_.backend == "vulkan") {

@@ -32,6 +32,8 @@ void validate(const RenderOptions& o) {
   if (o.spp < 1) throw Error("spp must be >= 1 (got " + std::to_string(o.spp) + ")");
   if (o.device < 0) throw Error("device must be >= 0 (got " + std::to_string(o.device) + ")");
   parse_light_sampler(o.light_sampler);  // throws for an unknown name
+  parse_emitter_tree_build(o.light_tree);
+  parse_emitter_distance(o.light_tree_distance);
   if (o.accel != "embree" && o.accel != "flat")
     throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
   if (o.threads < 0 || o.threads > kMaxThreads)

@@ -20,6 +20,8 @@ struct RenderOptions {
   uint32_t seed = 0;
   bool diffuse_only = false;
   std::string light_sampler = "power";  // core/lights/light_sampler.h: uniform, power, tree, slc
+  std::string light_tree = "saoh";      // core/lights/emitter_tree_build.h: saoh, morton
+  std::string light_tree_distance = "centre";  // core/lights/emitter_tree.h: centre, box, mixed
   std::string camera;  // name or index; "" = the first
   int threads = 0;     // 0 = all hardware threads
   float exposure = 0.0f;  // stops, applied when writing PNG only
@@ -50,6 +52,14 @@ struct RenderOptions {
       "how direct light (pt's next-event estimation, every method's direct pass, GI-1.0's cache) picks a light "
       "for a shading point: uniform, power (in proportion to power), tree (down a light tree by pbrt-v4's "
       "importance) or slc (the same tree, Yuksel's weights); light paths (VPLs) always start by power");
+    v("light_tree", light_tree,
+      "how the tree and slc samplers' light tree is built: saoh (top down by the surface area orientation "
+      "heuristic over power, bounds and emission cones, Conty Estevez & Kulla 2018) or morton (a perfect tree "
+      "over the Morton order of the lights' centres, blind to power and orientation)");
+    v("light_tree_distance", light_tree_distance,
+      "the distance in the tree sampler's importance: centre (to a node's box centre, at least a quarter of its "
+      "bounding radius, as pbrt-v4), box (to the box, at least its bounding radius) or mixed (box outside the "
+      "bounding sphere, centre within)");
     v("camera", camera, "camera name or index (default: the first)");
     v("threads", threads, "CPU threads (0: all)");
     v("exposure", exposure, "exposure in stops for PNG output");

@@ -11,6 +11,16 @@
                                   strings of 40 coloured bulbs (octahedra, eight triangles each),
                                   neon signs (boxes), 20 point-light street lamps and 10 spot lights
                                   over doors: about 9,000 emissive triangles and 30 punctual lights.
+  light-field/light-field.gltf    A 40 m field with 30 box occluders, 2,000 small double-sided
+                                  emissive quads at random places and orientations whose radiance
+                                  spans two orders of magnitude, 40 point and 10 spot lights:
+                                  where a light tree's build decides its variance.
+  light-field-open/...            The same field without the occluders.
+
+Beside each scene NAME goes NAME-mask: its emitters alone (every other surface black, no
+punctual lights). Rendered with direct light only, its non-zero pixels are those a visible
+emitter touches, which the light-sampler comparisons leave out (sst-eval compare --mask;
+tests/benchmarks/light_tree_compare.sh).
 
 Everything is generated from a fixed seed (no third-party data); metres, +Y up, diffuse
 materials, KHR_materials_emissive_strength radiance, radiometric KHR_lights_punctual intensities
@@ -138,6 +148,24 @@ class Builder:
             f.write(blob)
         with open(path, "w") as f:
             json.dump(gltf, f, indent=1)
+        # The mask: the same buffer, every surface that does not emit black, no punctual lights.
+        name = os.path.basename(path)[:-5]
+        mask_dir = os.path.join(os.path.dirname(os.path.dirname(path)), name + "-mask")
+        os.makedirs(mask_dir, exist_ok=True)
+        mask = json.loads(json.dumps(gltf))
+        for m in mask["materials"]:
+            if "emissiveFactor" not in m:
+                m["pbrMetallicRoughness"]["baseColorFactor"] = [0.0, 0.0, 0.0, 1.0]
+        lit = set(range(2, 2 + len(self.light_nodes)))
+        mask["scenes"][0]["nodes"] = [i for i in mask["scenes"][0]["nodes"] if i not in lit]
+        for i in lit:
+            mask["nodes"][i].pop("extensions", None)
+        mask.pop("extensions", None)
+        if "KHR_lights_punctual" in mask["extensionsUsed"]:
+            mask["extensionsUsed"].remove("KHR_lights_punctual")
+        mask["buffers"][0]["uri"] = os.path.join("..", name, name + ".bin")
+        with open(os.path.join(mask_dir, name + "-mask.gltf"), "w") as f:
+            json.dump(mask, f, indent=1)
         emissive = sum(len(t) for m, t in self.tris.items() if "emissiveFactor" in self.materials[m])
         total = sum(len(t) for t in self.tris.values())
         print("%s: %d triangles, %d emissive, %d punctual lights, %.1f MB" %
@@ -341,10 +369,66 @@ def fairground(out_dir):
     b.write(os.path.join(out_dir, "fairground", "fairground.gltf"), camera)
 
 
+def light_field(out_dir, occluders=True):
+    """2,000 small double-sided quads of mixed radiance with 40 point and 10 spot lights over a
+    40 m field (with 30 box occluders unless occluders is False)."""
+    rng = random.Random(40)
+    b = Builder()
+    ground = b.material("ground", (0.4, 0.4, 0.38))
+    stone = b.material("occluder", (0.5, 0.45, 0.4))
+    # Eight radiance levels, log-spaced over two orders of magnitude, in four tints.
+    tints = [(1.0, 0.85, 0.6), (1.0, 0.5, 0.3), (0.5, 0.7, 1.0), (0.8, 1.0, 0.7)]
+    levels = [2.0 * 100.0 ** (k / 7.0) for k in range(8)]
+    emitters = [b.material("emitter_%d_%d" % (lv, tn), (0.0, 0.0, 0.0), tints[tn], levels[lv], double_sided=True)
+                for lv in range(8) for tn in range(4)]
+    L = 20.0
+    b.quad(ground, (-L, 0.0, -L), (-L, 0.0, L), (L, 0.0, L), (L, 0.0, -L))
+    boxes = []
+    for _ in range(30):
+        x, z = rng.uniform(-18, 16), rng.uniform(-18, 16)
+        w, d, h = rng.uniform(0.8, 2.5), rng.uniform(0.8, 2.5), rng.uniform(0.8, 3.0)
+        boxes.append(((x, 0.0, z), (x + w, h, z + d)))
+    if occluders:
+        for lo, hi in boxes:
+            b.box(stone, lo, hi)
+    for _ in range(2000):
+        c = (rng.uniform(-19.5, 19.5), rng.uniform(0.3, 3.0), rng.uniform(-19.5, 19.5))
+        side = rng.uniform(0.05, 0.15)
+        # A random orientation: the quad's normal uniform on the sphere, its edges about it.
+        nz = rng.uniform(-1.0, 1.0)
+        phi = rng.uniform(0.0, 2.0 * math.pi)
+        r = math.sqrt(max(0.0, 1.0 - nz * nz))
+        n = (r * math.cos(phi), nz, r * math.sin(phi))
+        t = (1.0, 0.0, 0.0) if abs(n[0]) < 0.9 else (0.0, 1.0, 0.0)
+        u = (n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0])
+        lu = math.sqrt(sum(x * x for x in u))
+        u = tuple(x / lu * side * 0.5 for x in u)
+        v = (n[1] * u[2] - n[2] * u[1], n[2] * u[0] - n[0] * u[2], n[0] * u[1] - n[1] * u[0])
+        corner = lambda su, sv: tuple(c[i] + su * u[i] + sv * v[i] for i in range(3))
+        b.quad(emitters[rng.randrange(len(emitters))], corner(-1, -1), corner(1, -1), corner(1, 1), corner(-1, 1))
+    for k in range(40):
+        pos = (rng.uniform(-19, 19), rng.uniform(0.5, 4.0), rng.uniform(-19, 19))
+        b.point_light("point_%d" % k, pos, tints[k % 4], 10.0 ** rng.uniform(0.0, 1.5))
+    for k in range(10):
+        pos = (rng.uniform(-18, 18), rng.uniform(3.0, 6.0), rng.uniform(-18, 18))
+        # Aimed down (-Z turned -90 degrees about X), tilted by up to 30 degrees, then turned
+        # about Y: the quaternion yaw * tilt.
+        tilt, yaw = math.radians(rng.uniform(-30.0, 30.0)) - 0.5 * math.pi, rng.uniform(0.0, 2.0 * math.pi)
+        sx, cx, sy, cy = math.sin(tilt / 2), math.cos(tilt / 2), math.sin(yaw / 2), math.cos(yaw / 2)
+        q = (cy * sx, cx * sy, -sy * sx, cy * cx)
+        b.spot_light("spot_%d" % k, pos, q, tints[k % 4], 10.0 ** rng.uniform(1.5, 2.5), 0.3, 0.6)
+    pitch = math.radians(-28.0)
+    camera = {"name": "main", "camera": 0, "translation": [0.0, 14.0, 30.0],
+              "rotation": [math.sin(pitch / 2), 0.0, 0.0, math.cos(pitch / 2)],
+              "_perspective": {"yfov": 0.9, "aspectRatio": 16.0 / 9.0, "znear": 0.05, "zfar": 500.0}}
+    name = "light-field" if occluders else "light-field-open"
+    b.write(os.path.join(out_dir, name, name + ".gltf"), camera)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("out_dir", help="folder to write cornell-lamp/ and night-street/ into (e.g. a folder on SST_SCENE_PATH)")
-    ap.add_argument("--only", choices=["cornell-lamp", "night-street", "fairground"])
+    ap.add_argument("--only", choices=["cornell-lamp", "night-street", "fairground", "light-field"])
     a = ap.parse_args()
     if a.only in (None, "cornell-lamp"):
         cornell_lamp(a.out_dir)
@@ -352,6 +436,10 @@ def main():
         night_street(a.out_dir)
     if a.only in (None, "fairground"):
         fairground(a.out_dir)
+    if a.only in (None, "light-field"):
+        light_field(a.out_dir)
+        light_field(a.out_dir, occluders=False)
+
 
 
 if __name__ == "__main__":

@@ -90,7 +90,7 @@ void RtslcSampler::build_direct_cuts(const RenderContext& ctx, StageTimer& timer
       for (size_t b = range.begin(); b < range.end(); ++b) {
         const GBufferSample& g = cuts_.guides[b];
         cut.clear();
-        emitter_tree_cut(lights.tree, leaves, directional, g.valid, g.p, g.n, capacity, cut);
+        emitter_tree_cut(lights.tree, leaves, directional, lights.header.tree_distance, g.valid, g.p, g.n, capacity, cut);
         std::copy(cut.begin(), cut.end(), cut_nodes_.begin() + first + b * capacity);
         cut_sizes_[sizes_first + b] = uint32_t(cut.size());
       }

@@ -48,43 +48,67 @@ std::vector<ShadingPoint> shading_points(uint32_t seed, int count) {
   return points;
 }
 
+// Both builds: every inner node bounds its children, each child names it as its parent, the
+// nodes 1 .. 2 leaves - 1 form one tree (each reached once from the root), and every light has a
+// leaf that names it back.
 TEST(EmitterTree, InnerNodesBoundTheirChildren) {
   Scene scene = test::many_lights(1, 3000, 40, 40, true);
-  LightSampler lights(scene, LightSamplerKind::Tree);
-  const PackedLights& packed = lights.packed();
-  const uint32_t leaves = packed.header.tree_leaves;
-  ASSERT_EQ(leaves, 4096u);  // 3000-odd triangles and 80 punctual lights, padded to a power of two
-  ASSERT_EQ(packed.header.directional_count, 1u);
-  ASSERT_EQ(packed.tree.size(), 2u * leaves + 1u);
-  auto angle = [](vec3 a, vec3 b) { return std::atan2(double(glm::length(glm::cross(a, b))), double(glm::dot(a, b))); };
-  int checked = 0;
-  for (uint32_t i = 1; i < leaves; ++i) {
-    const EmitterNode& parent = packed.tree[i];
-    double sum = 0.0;
-    for (uint32_t c : {2 * i, 2 * i + 1}) {
-      const EmitterNode& child = packed.tree[c];
-      if (!(child.intensity > 0.0f)) continue;
-      sum += child.intensity;
-      EXPECT_TRUE(glm::all(glm::lessThanEqual(parent.lo, child.lo)) && glm::all(glm::greaterThanEqual(parent.hi, child.hi)))
-          << i;
-      // The child's cone lies in the parent's: angle between axes + child's half angle <= parent's.
-      if (parent.cos_o > -1.0f) {
-        double theta_child = std::acos(std::clamp(double(child.cos_o), -1.0, 1.0));
-        double theta_parent = std::acos(std::clamp(double(parent.cos_o), -1.0, 1.0));
-        EXPECT_LE(angle(parent.axis, child.axis) + theta_child, theta_parent + 1e-6) << i;
+  for (EmitterTreeBuild build : {EmitterTreeBuild::Saoh, EmitterTreeBuild::Morton}) {
+    SCOPED_TRACE(emitter_tree_build_name(build));
+    LightSampler lights(scene, LightSamplerKind::Tree, build);
+    const PackedLights& packed = lights.packed();
+    const uint32_t leaves = packed.header.tree_leaves;
+    // 3000-odd triangles and 80 punctual lights; morton pads them to a power of two.
+    if (build == EmitterTreeBuild::Morton) ASSERT_EQ(leaves, 4096u);
+    else ASSERT_EQ(leaves, uint32_t(lights.light_count() - 1));  // all but the sun
+    ASSERT_EQ(packed.header.directional_count, 1u);
+    ASSERT_EQ(packed.tree.size(), 2u * leaves + 1u);
+    auto angle = [](vec3 a, vec3 b) { return std::atan2(double(glm::length(glm::cross(a, b))), double(glm::dot(a, b))); };
+    int checked = 0;
+    std::vector<int> reached(2 * leaves, 0);
+    std::vector<std::pair<uint32_t, uint32_t>> stack{{1u, 0u}};  // node, depth
+    uint32_t deepest = 0;
+    while (!stack.empty()) {
+      auto [i, depth] = stack.back();
+      stack.pop_back();
+      ASSERT_LT(i, 2 * leaves);
+      ++reached[i];
+      deepest = std::max(deepest, depth);
+      const EmitterNode& parent = packed.tree[i];
+      if (parent.children == 0u) continue;
+      double sum = 0.0;
+      for (uint32_t c : {parent.children, parent.children + 1}) {
+        const EmitterNode& child = packed.tree[c];
+        EXPECT_EQ(child.parent, i) << c;
+        stack.push_back({c, depth + 1});
+        if (!(child.intensity > 0.0f)) continue;
+        sum += child.intensity;
+        EXPECT_TRUE(glm::all(glm::lessThanEqual(parent.lo, child.lo)) && glm::all(glm::greaterThanEqual(parent.hi, child.hi)))
+            << i;
+        // The child's cone lies in the parent's: angle between axes + child's half angle <= parent's;
+        // a two-sided parent may hold the child's cone turned about.
+        if (parent.cos_o > -1.0f) {
+          double theta_child = std::acos(std::clamp(double(child.cos_o), -1.0, 1.0));
+          double theta_parent = std::acos(std::clamp(double(parent.cos_o), -1.0, 1.0));
+          double between = angle(parent.axis, child.axis);
+          if (parent.flags & EMITTER_TWO_SIDED) between = std::min(between, angle(parent.axis, -child.axis));
+          EXPECT_LE(between + theta_child, theta_parent + 1e-6) << i;
+        }
+        EXPECT_LE(parent.cos_e, child.cos_e) << i;
+        if (child.flags & EMITTER_TWO_SIDED) EXPECT_TRUE(parent.flags & EMITTER_TWO_SIDED) << i;
+        ++checked;
       }
-      EXPECT_LE(parent.cos_e, child.cos_e) << i;
-      if (child.flags & EMITTER_TWO_SIDED) EXPECT_TRUE(parent.flags & EMITTER_TWO_SIDED) << i;
-      ++checked;
+      EXPECT_NEAR(parent.intensity, sum, 1e-5 * sum) << i;
     }
-    EXPECT_NEAR(parent.intensity, sum, 1e-5 * sum) << i;
-  }
-  EXPECT_GT(checked, 3000);
-  // Every light with power has a node, which names it back; leaves hold lights in Morton order.
-  for (uint32_t e = 0; e < lights.light_count(); ++e) {
-    uint32_t node = packed.distribution[e].tree_node;
-    ASSERT_NE(node, LIGHT_NONE) << e;
-    EXPECT_EQ(packed.tree[node].entry, e);
+    for (uint32_t i = 1; i < 2 * leaves; ++i) EXPECT_EQ(reached[i], 1) << i;
+    EXPECT_LE(deepest, kEmitterTreeMaxDepth);
+    EXPECT_GT(checked, 6000);
+    for (uint32_t e = 0; e < lights.light_count(); ++e) {
+      uint32_t node = packed.distribution[e].tree_node;
+      ASSERT_NE(node, LIGHT_NONE) << e;
+      EXPECT_EQ(packed.tree[node].entry, e);
+      EXPECT_EQ(packed.tree[node].children, 0u);
+    }
   }
 }
 
@@ -147,9 +171,10 @@ bool can_contribute(const Scene& scene, const LightSampler& lights, uint32_t ent
 // it sends nothing to the point, and the pick returns no light. Such dead ends are a bin of their
 // own, of probability 1 - sum of the pmfs; the pmfs with it sum to 1.
 void check_sampler(const Scene& scene, LightSamplerKind kind, uint32_t seed, int points, int picks,
-                   bool expect_culled = false) {
+                   bool expect_culled = false, EmitterTreeBuild build = EmitterTreeBuild::Saoh) {
   SCOPED_TRACE(light_sampler_name(kind));
-  LightSampler lights(scene, kind);
+  SCOPED_TRACE(emitter_tree_build_name(build));
+  LightSampler lights(scene, kind, build);
   const uint32_t count = uint32_t(lights.light_count());
   std::mt19937 rng(seed);
   int zero_checked = 0, failures = 0;
@@ -197,11 +222,41 @@ void check_sampler(const Scene& scene, LightSamplerKind kind, uint32_t seed, int
 TEST(LightSamplers, PmfsSumToOneAndMatchPickFrequencies) {
   Scene scene = test::many_lights(2, 300, 10, 12, true);
   for (LightSamplerKind kind : kAllKinds) check_sampler(scene, kind, 11, 24, 60000, true);
+  for (LightSamplerKind kind : {LightSamplerKind::Tree, LightSamplerKind::Slc})
+    check_sampler(scene, kind, 11, 24, 60000, true, EmitterTreeBuild::Morton);
 }
 
 TEST(LightSamplers, ManyLightsWithoutDirectionalOrPunctual) {
   Scene scene = test::many_lights(3, 2000, 0, 0, false);
-  for (LightSamplerKind kind : {LightSamplerKind::Tree, LightSamplerKind::Slc}) check_sampler(scene, kind, 12, 6, 200000, true);
+  for (EmitterTreeBuild build : {EmitterTreeBuild::Saoh, EmitterTreeBuild::Morton})
+    for (LightSamplerKind kind : {LightSamplerKind::Tree, LightSamplerKind::Slc})
+      check_sampler(scene, kind, 12, 6, 200000, true, build);
+}
+
+// Point lights in a row, each half again as far along it as the last and twice as bright: the
+// heuristic's cheapest split sets the farthest light apart at every level, a tree as deep as the
+// row is long. The build halves what remains once the depth nears kEmitterTreeMaxDepth, so every
+// leaf's path fits the pmf's 64-bit trail, and the pmfs (read through both halves of the
+// trail) still match the picks.
+TEST(LightSamplers, TheDepthStaysWithinTheTrail) {
+  Scene scene = test::many_lights(15, 0, 0, 0, false);
+  for (int i = 0; i < 120; ++i) {
+    PunctualLight l;
+    l.type = LightType::Point;
+    l.position = vec3(-3.0f + 1e-6f * std::pow(1.5f, float(i)), 2.0f, 0.0f);
+    l.intensity = vec3(std::ldexp(1.0f, i - 60));
+    scene.lights.push_back(l);
+  }
+  LightSampler lights(scene, LightSamplerKind::Tree);
+  const PackedLights& packed = lights.packed();
+  uint32_t deepest = 0;
+  for (uint32_t e = 0; e < lights.light_count(); ++e) {
+    uint32_t depth = 0;
+    for (uint32_t node = packed.distribution[e].tree_node; node != 1u; node = packed.tree[node].parent) ++depth;
+    deepest = std::max(deepest, depth);
+  }
+  EXPECT_EQ(deepest, kEmitterTreeMaxDepth);  // the heuristic went as deep as the trail allows
+  check_sampler(scene, LightSamplerKind::Tree, 16, 12, 40000);
 }
 
 TEST(LightSamplers, OnlyPunctualLights) {
@@ -245,6 +300,9 @@ TEST(LightSamplers, SamplePdfEqualsEmissiveHitPdf) {
 TEST(LightSamplers, NamesRoundTrip) {
   for (LightSamplerKind kind : kAllKinds) EXPECT_EQ(parse_light_sampler(light_sampler_name(kind)), kind);
   EXPECT_THROW(parse_light_sampler("bvh"), Error);
+  for (EmitterTreeBuild build : {EmitterTreeBuild::Saoh, EmitterTreeBuild::Morton})
+    EXPECT_EQ(parse_emitter_tree_build(emitter_tree_build_name(build)), build);
+  EXPECT_THROW(parse_emitter_tree_build("bvh"), Error);
 }
 
 }  // namespace

@@ -94,6 +94,23 @@ TEST(Metrics, HandComputedOnTinyImages) {
   EXPECT_EQ(m.nonfinite_test, 0u);
 }
 
+// The masked errors leave out the pixels where the mask is non-zero, and only those.
+TEST(Metrics, MaskedErrorsSkipThePixelsTheMaskMarks) {
+  Image reference(4, 2), test(4, 2), mask(4, 2);
+  for (float& v : reference.data) v = 0.5f;
+  test = reference;
+  test.set_rgb(1, 0, sst::vec3(10.0f));  // a visible emitter's error, masked
+  mask.set_rgb(1, 0, sst::vec3(3.0f));
+  mask.at(2, 1, 1) = 1.0f;          // one channel marks a pixel too
+  test.set_rgb(3, 1, sst::vec3(0.5f + 0.3f, 0.5f, 0.5f));
+  const sst::MaskedErrors e = sst::masked_errors(test, reference, mask);
+  EXPECT_EQ(e.pixels, 6u);
+  EXPECT_NEAR(e.rmse, std::sqrt(0.09 / 18.0), 1e-7);
+  EXPECT_NEAR(e.mae, 0.3 / 18.0, 1e-7);
+  EXPECT_NEAR(e.rel_mse, 0.09 / 0.26 / 18.0, 1e-7);
+  EXPECT_THROW(sst::masked_errors(test, reference, Image(2, 2)), sst::Error);
+}
+
 TEST(Metrics, RelativeMseWeighsDarkPixelsMore) {
   // The same absolute error counts 50x more on a black reference than on a white one.
   const sst::ImageMetrics dark = sst::compare_images(tiny({0.1f, 0, 0, 0, 0, 0}), tiny({0, 0, 0, 0, 0, 0}));

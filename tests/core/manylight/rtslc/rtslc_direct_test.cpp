@@ -20,16 +20,17 @@ namespace {
 
 // How often each distribution entry lies below a node of `cut`.
 std::vector<int> coverage(const PackedLights& lights, const std::vector<uint32_t>& cut) {
-  const uint32_t leaves = lights.header.tree_leaves;
   std::vector<int> count(lights.distribution.size(), 0);
-  for (uint32_t node : cut) {
-    if (node >= leaves) {  // a leaf of the heap, or a directional light beside it
-      if (lights.tree[node].entry != LIGHT_NONE) ++count[lights.tree[node].entry];
-      continue;
+  std::vector<uint32_t> stack(cut.begin(), cut.end());
+  while (!stack.empty()) {
+    const EmitterNode& node = lights.tree[stack.back()];
+    stack.pop_back();
+    if (node.children != 0u) {
+      stack.push_back(node.children);
+      stack.push_back(node.children + 1);
+    } else if (node.entry != LIGHT_NONE) {  // a leaf, or a directional light beside the tree
+      ++count[node.entry];
     }
-    uint32_t shift = uint32_t(std::bit_width(leaves) - std::bit_width(node));
-    for (uint32_t leaf = node << shift; leaf < (node + 1) << shift; ++leaf)
-      if (lights.tree[leaf].entry != LIGHT_NONE) ++count[lights.tree[leaf].entry];
   }
   return count;
 }
@@ -48,7 +49,7 @@ TEST(RtslcDirect, EveryCutOfTheEmitterTreeHoldsEveryLightOnce) {
       vec3 p = vec3(4.0f * u(rng), 2.0f + 2.0f * u(rng), 4.0f * u(rng));
       vec3 n = glm::normalize(vec3(u(rng), u(rng), u(rng)) + vec3(0.0f, 0.1f, 0.0f));
       std::vector<uint32_t> cut;
-      emitter_tree_cut(lights.tree, leaves, directional, i % 10 != 0, p, n, max_nodes, cut);
+      emitter_tree_cut(lights.tree, leaves, directional, lights.header.tree_distance, i % 10 != 0, p, n, max_nodes, cut);
       // The root and the sun always; beyond that, splits until max_nodes.
       EXPECT_LE(cut.size(), std::max<size_t>(max_nodes, 2)) << max_nodes;
       EXPECT_GE(cut.size(), std::min<size_t>(max_nodes, 2)) << max_nodes;

@@ -64,6 +64,17 @@ void add_cube(Scene& s, float side, uint32_t material) {
   add_quad(s, p[0], p[3], p[7], p[4], material);
   add_quad(s, p[1], p[5], p[6], p[2], material);
 }
+
+// Uniform numbers and directions from one seed, for the generated scenes.
+struct Draws {
+  std::mt19937 rng;
+  explicit Draws(uint32_t seed) : rng(seed) {}
+  float uniform(float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; }
+  vec3 direction() {
+    float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 6.2831853f), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    return vec3(r * std::cos(phi), z, r * std::sin(phi));
+  }
+};
 }  // namespace
 
 Scene emissive_box(float albedo, float emission, float side) {
@@ -156,12 +167,10 @@ void scale_scene(Scene& scene, float k) {
 }
 
 Scene many_lights(uint32_t seed, int triangles, int points, int spots, bool sun) {
-  std::mt19937 rng(seed);
-  auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; };
-  auto direction = [&]() {
-    float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 6.2831853f), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    return vec3(r * std::cos(phi), z, r * std::sin(phi));
-  };
+  Draws draws(seed);
+  std::mt19937& rng = draws.rng;
+  auto uniform = [&](float lo, float hi) { return draws.uniform(lo, hi); };
+  auto direction = [&]() { return draws.direction(); };
   Scene s;
   s.source = "generated:many_lights";
   s.materials.push_back(diffuse_material("floor", 0.5f, 0.0f));
@@ -213,12 +222,10 @@ Scene many_lights(uint32_t seed, int triangles, int points, int spots, bool sun)
 }
 
 Scene light_field(uint32_t seed, int quads, int points, int spots) {
-  std::mt19937 rng(seed);
-  auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * 0x1p-24f; };
-  auto direction = [&]() {
-    float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 6.2831853f), r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-    return vec3(r * std::cos(phi), z, r * std::sin(phi));
-  };
+  Draws draws(seed);
+  std::mt19937& rng = draws.rng;
+  auto uniform = [&](float lo, float hi) { return draws.uniform(lo, hi); };
+  auto direction = [&]() { return draws.direction(); };
   Scene s;
   s.source = "generated:light_field";
   s.materials.push_back(diffuse_material("ground", 0.4f, 0.0f));

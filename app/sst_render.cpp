@@ -38,6 +38,7 @@ struct Args {
   bool list_methods = false;
   bool markdown = false;
   bool list_devices = false;
+  bool emitters_only = false;
 };
 
 void print_methods() {
@@ -120,8 +121,9 @@ void split_flags(const nlohmann::json& given, sst::RenderOptions& options, nlohm
 }
 
 sst::Scene load_scene(const Args& args) {
-  if (args.scene.empty()) return sst::load_default_scene();
-  return sst::load_gltf(sst::resolve_scene(args.scene, args.scene_dirs));
+  sst::Scene scene =
+      args.scene.empty() ? sst::load_default_scene() : sst::load_gltf(sst::resolve_scene(args.scene, args.scene_dirs));
+  return args.emitters_only ? sst::emitters_only(scene) : scene;
 }
 
 // Frame `index` of a sequence's output: out.exr -> out_0007.exr.
@@ -225,6 +227,7 @@ int run(const Args& args, const sst::app::ParamFlags& flags) {
   sst::RenderOptions options;
   nlohmann::json method_params;
   split_flags(flags.given(), options, method_params);
+  if (args.emitters_only) options.diffuse_only = true;  // no specular lobe may reflect an emitter
   sst::find_method(options.method);
 
   sst::StageTimer load_timer;
@@ -282,6 +285,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-preview", args.no_preview, "a sequence without its MP4 preview (written with ffmpeg)");
   app.add_option("--repeat", args.repeat, "render this many times; timings are medians with min and max");
   app.add_flag("-q,--quiet", args.quiet, "no progress or summary on stderr");
+  app.add_flag("--emitters-only", args.emitters_only,
+               "render the scene's emitters alone (every surface black, no punctual lights; implies --diffuse-only): "
+               "its non-zero pixels are those a directly seen emitter touches, a mask for sst-eval compare --mask");
   CLI::Option* list_methods = app.add_flag("--list-methods", args.list_methods, "list methods and their parameters");
   app.add_flag("--markdown", args.markdown, "with --list-methods: print the README's method tables (Markdown)")
       ->needs(list_methods);

@@ -28,7 +28,7 @@ nlohmann::json method_overrides(const nlohmann::json& cfg, const std::string& me
   nlohmann::json params = nlohmann::json::object();
   const MethodInfo& info = find_method(method);
   for (const auto& [key, value] : cfg.items()) {
-    if (key == "kind" || key == "spp" || key == "seed" || key == "light_sampler") continue;
+    if (key == "kind" || key == "spp" || key == "seed" || key == "light_sampler" || key == "mask") continue;
     bool known = std::any_of(info.params.begin(), info.params.end(),
                              [&name = key](const ParamInfo& p) { return p.name == name; });
     if (!known) throw Error("reference: '" + key + "' is not a parameter of its method '" + method + "'");
@@ -84,6 +84,20 @@ ReferenceSpec reference_for(const RunSpec& run, const nlohmann::json& cfg, const
                              {"options", r.options},          {"method_params", r.method_params}};
   r.id = Hash64().add(identity.dump()).hex();
   return r;
+}
+
+ReferenceSpec emitter_mask_for(const ReferenceSpec& reference) {
+  ReferenceSpec m;
+  m.kind = "mask";
+  m.scene = reference.scene;
+  m.options = {{"backend", "cpu"}, {"method", "pt"}, {"spp", 64}, {"seed", 1000003u}, {"diffuse_only", true}};
+  for (const char* key : {"width", "height", "camera"})
+    if (reference.options.contains(key)) m.options[key] = reference.options[key];
+  m.method_params = {{"max_bounces", 0}};
+  nlohmann::json identity = {{"version", kReferenceVersion}, {"kind", m.kind}, {"of", reference.id},
+                             {"options", m.options}, {"method_params", m.method_params}};
+  m.id = Hash64().add(identity.dump()).hex();
+  return m;
 }
 
 std::string scene_content_hash(const std::string& scene_path) {

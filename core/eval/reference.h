@@ -10,6 +10,9 @@
 // | max_bounces   | 8       | path: indirect bounces                                                  |
 // | seed          | 1000003 | path: its own seed, independent of every run's seed (vpl: the run's)   |
 // | light_sampler | power   | path: the light sampler of its next-event estimation (RenderOptions)   |
+// | mask          | false   | also measure each single-frame run on the pixels no directly seen      |
+// |               |         | emitter touches ("masked" in its metrics): the mask is the scene's     |
+// |               |         | emitters alone (emitters_only, core/scene/scene.h), 64 spp, cached     |
 // | <parameter>   |         | any other pt (path) or exhaustive (vpl) parameter                     |
 //
 // Resolution, camera and diffuse_only are the run's. References always render on the CPU
@@ -40,6 +43,10 @@ struct ReferenceSpec {
 // or key, or for a vpl reference of a run that has no VPLs (pt).
 ReferenceSpec reference_for(const RunSpec& run, const nlohmann::json& reference_config,
                             const std::string& scene_content_hash);
+
+// The emitter mask beside `reference` (its "mask" key): the same resolution and camera, pt with
+// direct light only, diffuse-only, 64 spp; rendered on emitters_only(scene).
+ReferenceSpec emitter_mask_for(const ReferenceSpec& reference);
 
 // Hash of a scene's bytes: the .gltf/.glb and every external buffer and image it names
 // ("" = the built-in scene).

@@ -352,6 +352,10 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
       {"scene_summary", scene_summary(scene, last.options.diffuse_only)},
       {"metrics", to_json(metrics)},
   });
+  if (reference.mask) {
+    const MaskedErrors e = masked_errors(measured, *reference.image, *reference.mask);
+    record["metrics"]["masked"] = {{"pixels", e.pixels}, {"rmse", e.rmse}, {"rel_mse", e.rel_mse}, {"mae", e.mae}};
+  }
   record["counters"]["method"] = last.frame.method_counters;
   if (run.metrics_layer != "color") record["metrics_layer"] = run.metrics_layer;
   write_json_atomic((dir / "run.json").string(), record);

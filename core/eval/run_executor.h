@@ -21,6 +21,7 @@ struct RunReference {
   std::string id;
   nlohmann::json description;  // kind and parameters, for results.json
   const Image* image = nullptr;
+  const Image* mask = nullptr;  // the emitter mask (reference "mask"); null: none
 };
 
 // The reference of a sequence's frame `index`, at `time`, rendered on the scene as posed then.

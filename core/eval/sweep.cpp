@@ -67,7 +67,14 @@ class ReferenceStore {
                                 {"method_params", spec.method_params}, {"render_ms", render_ms}};
       it = images_.emplace(spec.id, std::move(image)).first;
     }
-    return {spec.id, descriptions_[spec.id], &it->second};
+    RunReference reference{spec.id, descriptions_[spec.id], &it->second};
+    if (config_.value("mask", false)) {
+      const ReferenceSpec mask = emitter_mask_for(spec);
+      auto m = images_.find(mask.id);
+      if (m == images_.end()) m = images_.emplace(mask.id, cache_.get(mask, emitters_only(*scene.scene), quiet_)).first;
+      reference.mask = &m->second;
+    }
+    return reference;
   }
 
   // The reference of frame `index` of a sequence run, on the scene as posed then: cached on disk

@@ -36,7 +36,7 @@ double group_mean(const nlohmann::json& group, const std::map<std::string, const
 }
 
 Row group_row(const nlohmann::json& g, const std::map<std::string, const nlohmann::json*>& runs, bool scenes,
-              const std::vector<std::string>& axes, const std::vector<std::string>& stages) {
+              const std::vector<std::string>& axes, const std::vector<std::string>& stages, bool masked) {
   Row row;
   if (scenes) row.push_back(g["scene"].get<std::string>());
   row.push_back(g["label"].get<std::string>());
@@ -56,6 +56,14 @@ Row group_row(const nlohmann::json& g, const std::map<std::string, const nlohman
   if (g["rmse_std"].is_number()) rmse += " ± " + fixed(number(g["rmse_std"]), 2);
   row.push_back(rmse);
   row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["metrics"]["rel_mse"]); })));
+  if (masked)
+    for (const char* key : {"rmse", "rel_mse"})
+      row.push_back(fixed(group_mean(g, runs, [key](const nlohmann::json& r) {
+        const nlohmann::json& m = r["metrics"];
+        if (!m.contains("masked")) return double(NAN);
+        const double v = number(m["masked"][key]);
+        return std::string(key) == "rmse" ? v * v : v;  // MSE: means over seeds of squared errors
+      })));
   row.push_back(fixed(number(g["ssim_mean"])));
   row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["ssim_gain_pct_per_ms"]); }), 3));
   row.push_back(g.value("pareto", false) ? "yes" : "");
@@ -105,6 +113,9 @@ std::string format_table(const nlohmann::json& results, const std::string& forma
       if (key != "spp" && key != "method" && std::find(axes.begin(), axes.end(), key) == axes.end()) axes.push_back(key);
   }
   bool scenes = scene_names.size() > 1;
+  // Masked columns when any run was measured against an emitter mask (reference "mask").
+  bool masked = false;
+  for (const nlohmann::json& r : results.at("runs")) masked = masked || (r.contains("metrics") && r["metrics"].contains("masked"));
   Row header;
   if (scenes) header.push_back("scene");
   header.push_back("method");  // the label: the method, or the variant's name (with the method if it is an axis)
@@ -112,9 +123,15 @@ std::string format_table(const nlohmann::json& results, const std::string& forma
   header.push_back("spp");
   header.push_back("frame ms (median [min-max])");
   for (const std::string& s : stages) header.push_back(s + " ms");
-  for (const char* h : {"RMSE", "relMSE", "SSIM", "gain %SSIM/ms", "Pareto"}) header.push_back(h);
+  header.push_back("RMSE");
+  header.push_back("relMSE");
+  if (masked) {
+    header.push_back("MSE masked");
+    header.push_back("relMSE masked");
+  }
+  for (const char* h : {"SSIM", "gain %SSIM/ms", "Pareto"}) header.push_back(h);
   std::vector<Row> rows;
-  for (const nlohmann::json& g : results["groups"]) rows.push_back(group_row(g, runs, scenes, axes, stages));
+  for (const nlohmann::json& g : results["groups"]) rows.push_back(group_row(g, runs, scenes, axes, stages, masked));
   return format == "markdown" ? markdown(header, rows) : csv(header, rows);
 }
 

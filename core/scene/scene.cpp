@@ -12,6 +12,18 @@ void Scene::finalize_bounds() {
   for (const vec3& p : positions) bounds.extend(p);
 }
 
+Scene emitters_only(const Scene& scene) {
+  Scene out = scene;
+  for (Material& m : out.materials) {
+    m.base_color = vec3(0.0f);
+    m.base_color_texture = -1;
+    m.metallic = 0.0f;
+    m.metallic_roughness_texture = -1;
+  }
+  out.lights.clear();
+  return out;
+}
+
 bool Scene::material_emits(uint32_t m) const {
   return m < materials.size() && max_component(materials[m].emission) > 0.0f;
 }

@@ -98,6 +98,12 @@ struct Scene {
   int find_light(const std::string& name_or_index) const;
 };
 
+// A copy of `scene` in which only its emitters show: every material's base colour black (no
+// texture, not metallic), no punctual lights. Rendered diffuse-only, a pixel is non-zero exactly
+// where an emitter is seen directly: the mask of the pixels that visible emitters touch, which
+// light-sampler comparisons leave out (sst-render --emitters-only, sweeps' reference "mask").
+Scene emitters_only(const Scene& scene);
+
 // The largest coordinate magnitude a scene may hold. Beyond it float has no useful resolution
 // (its spacing at 1e12 is 2^16 units), squared distances approach float's range, and near 1.8e18
 // Embree's BVH build asserts. Checked before anything is built or any ray traced.

@@ -17,10 +17,9 @@
                                   where a light tree's build decides its variance.
   light-field-open/...            The same field without the occluders.
 
-Beside each scene NAME goes NAME-mask: its emitters alone (every other surface black, no
-punctual lights). Rendered with direct light only, its non-zero pixels are those a visible
-emitter touches, which the light-sampler comparisons leave out (sst-eval compare --mask;
-tests/benchmarks/light_tree_compare.sh).
+A scene's emitters-only mask (`sst-render NAME --emitters-only`) marks the pixels a directly seen
+emitter touches, which the light-sampler comparisons leave out (sst-eval compare --mask,
+tests/benchmarks/light_tree_compare.sh, a sweep's reference "mask").
 
 Everything is generated from a fixed seed (no third-party data); metres, +Y up, diffuse
 materials, KHR_materials_emissive_strength radiance, radiometric KHR_lights_punctual intensities
@@ -148,24 +147,6 @@ class Builder:
             f.write(blob)
         with open(path, "w") as f:
             json.dump(gltf, f, indent=1)
-        # The mask: the same buffer, every surface that does not emit black, no punctual lights.
-        name = os.path.basename(path)[:-5]
-        mask_dir = os.path.join(os.path.dirname(os.path.dirname(path)), name + "-mask")
-        os.makedirs(mask_dir, exist_ok=True)
-        mask = json.loads(json.dumps(gltf))
-        for m in mask["materials"]:
-            if "emissiveFactor" not in m:
-                m["pbrMetallicRoughness"]["baseColorFactor"] = [0.0, 0.0, 0.0, 1.0]
-        lit = set(range(2, 2 + len(self.light_nodes)))
-        mask["scenes"][0]["nodes"] = [i for i in mask["scenes"][0]["nodes"] if i not in lit]
-        for i in lit:
-            mask["nodes"][i].pop("extensions", None)
-        mask.pop("extensions", None)
-        if "KHR_lights_punctual" in mask["extensionsUsed"]:
-            mask["extensionsUsed"].remove("KHR_lights_punctual")
-        mask["buffers"][0]["uri"] = os.path.join("..", name, name + ".bin")
-        with open(os.path.join(mask_dir, name + "-mask.gltf"), "w") as f:
-            json.dump(mask, f, indent=1)
         emissive = sum(len(t) for m, t in self.tris.items() if "emissiveFactor" in self.materials[m])
         total = sum(len(t) for t in self.tris.values())
         print("%s: %d triangles, %d emissive, %d punctual lights, %.1f MB" %

@@ -132,6 +132,28 @@ TEST(SstEvalSweep, TablePrintsMarkdownAndCsv) {
   EXPECT_EQ(eval("table " + (dir / "out").string() + " --format xml").exit_code, 1);
 }
 
+// A reference with "mask": every run's metrics gain the errors on the pixels no visible emitter
+// touches (the Cornell box's lamp is in view: fewer pixels than the image, but most), and the
+// table their columns.
+TEST(SstEvalSweep, AMaskedReferenceMeasuresThePixelsNoEmitterTouches) {
+  fs::path dir = test::temp_dir();
+  fs::path config = write_config(dir, {{"width", 32}, {"height", 32}, {"method", "pt"}, {"max_bounces", 0}, {"spp", 2},
+                                       {"reference", {{"spp", 16}, {"max_bounces", 0}, {"mask", true}}}});
+  test::CommandResult run = eval("sweep -q " + config.string() + " --cache-dir " + (dir / "cache").string() + " -o " +
+                                 (dir / "out").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  json results = read_json_file((dir / "out/results.json").string());
+  ASSERT_EQ(results["runs"].size(), 1u);
+  const json& m = results["runs"][0]["metrics"];
+  ASSERT_TRUE(m.contains("masked")) << m.dump();
+  const size_t pixels = m["masked"]["pixels"].get<size_t>();
+  EXPECT_GT(pixels, 32u * 32u / 2);
+  EXPECT_LT(pixels, 32u * 32u);
+  EXPECT_GT(m["masked"]["rmse"].get<double>(), 0.0);
+  test::CommandResult md = eval("table " + (dir / "out").string());
+  EXPECT_NE(md.output.find("| RMSE | relMSE | MSE masked | relMSE masked |"), std::string::npos) << md.output;
+}
+
 }  // namespace
 }  // namespace sst
 

@@ -55,6 +55,28 @@ TEST(SstRender, DefaultSceneWritesImageAovsAndRecord) {
   EXPECT_GT(rec["counters"]["mrays_per_s"].get<double>(), 0.0);
 }
 
+// --emitters-only leaves the lamp alone in the Cornell box: its pixels hold its radiance, every
+// pixel that does not see it is black, at any number of bounces.
+TEST(SstRender, EmittersOnlyShowsTheLampAlone) {
+  auto dir = test::temp_dir();
+  auto exr = (dir / "mask.exr").string();
+  auto r = test::run_command(render_cmd("-o " + exr + " --width 32 --spp 4 -q --emitters-only"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  Image img = read_image(exr);
+  int lit = 0;
+  float brightest = 0.0f;
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const vec3 c = img.rgb(x, y);
+      if (c != vec3(0.0f)) ++lit;
+      brightest = std::max(brightest, c.x);
+    }
+  EXPECT_GT(lit, 0);
+  EXPECT_LT(lit, 32 * 32 / 10);    // the lamp is a small part of the view
+  EXPECT_GT(brightest, 1.0f);       // the lamp's radiance, not a reflection of it
+  EXPECT_EQ(img.rgb(16, 31), vec3(0.0f));  // the floor in front of the camera
+}
+
 TEST(SstRender, RepeatReportsMedianMinMax) {
   auto dir = test::temp_dir();
   auto r = test::run_command(render_cmd("-o " + (dir / "a.exr").string() + " --width 16 --spp 1 --repeat 3 -q"));

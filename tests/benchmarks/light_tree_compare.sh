@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Light samplers side by side on scenes with many lights, direct light only (pt, max_bounces 0,
 # diffuse-only), as tests/benchmarks/README.md reports them: for each scene NAME (found as
-# SCENES/NAME/NAME.gltf, with its emitters-only NAME-mask beside it, both written by
-# scenes/tools/make_many_lights.py), a reference at REF_SPP, the mask, then SEEDS renders at SPP
+# SCENES/NAME/NAME.gltf, e.g. written by scenes/tools/make_many_lights.py), a reference at
+# REF_SPP, its emitters-only mask (sst-render --emitters-only), then SEEDS renders at SPP
 # for each sampler configuration, compared with the reference by `sst-eval compare --mask`: MSE
 # and relMSE on all pixels and on the pixels no directly seen emitter touches ("masked"), means
 # over the seeds, and the median frame time. Prints one table per scene.
@@ -25,10 +25,10 @@ saoh-mixed=--light-sampler,tree,--light-tree,saoh,--light-tree-distance,mixed"}
 render=("$build/sst-render" --max-bounces 0 --diffuse-only --height "$HEIGHT")
 mkdir -p "$OUT"
 for name in "${names[@]}"; do
-  scene="$scenes/$name/$name.gltf" mask_scene="$scenes/$name-mask/$name-mask.gltf"
+  scene="$scenes/$name/$name.gltf"
   ref="$OUT/$name-ref.exr" mask="$OUT/$name-mask.exr"
   [ -f "$ref" ] || "${render[@]}" "$scene" --spp "$REF_SPP" --light-sampler tree --seed 99 -o "$ref" > /dev/null 2>&1
-  [ -f "$mask" ] || "${render[@]}" "$mask_scene" --spp 64 -o "$mask" > /dev/null 2>&1
+  [ -f "$mask" ] || "${render[@]}" "$scene" --emitters-only --spp 64 -o "$mask" > /dev/null 2>&1
   echo "== $name: ${HEIGHT}p, $SPP spp, $SEEDS seeds, against $REF_SPP spp"
   printf "%-14s %12s %12s %12s %12s %10s\n" config mse rel_mse "mse masked" "rel masked" "frame ms"
   for config in $CONFIGS; do

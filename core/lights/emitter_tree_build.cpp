@@ -246,6 +246,8 @@ struct SaohItem {
 constexpr int kSaohBuckets = 12;
 // Ranges at least this long are built in parallel with their sibling.
 constexpr size_t kSaohParallelRange = 4096;
+// Lights binned together; a longer range's chunks are binned in parallel.
+constexpr size_t kSaohChunk = 16384;
 
 struct SaohBuilder {
   std::span<const glsl::EmitterNode> lights;
@@ -304,29 +306,38 @@ struct SaohBuilder {
       });
       return mid;
     };
-    if (depth + std::bit_width(m - 1) >= kEmitterTreeMaxDepth) return median();
+    // Two lights: every split is the same pair of leaves (a quarter of the build's time was theirs).
+    if (m == 2 || depth + std::bit_width(m - 1) >= kEmitterTreeMaxDepth) return median();
     const double floor = 1e-3 * double(widest);
     double best_cost = std::numeric_limits<double>::infinity();
     int best_dim = -1, best_split = -1;
+    const std::array<Buckets, 3> binned = bin(items, centres);
     for (int dim = 0; dim < 3; ++dim) {
       if (!(spread[dim] > 0.0f)) continue;
-      const float lo = centres.lo[dim];
-      const float scale = float(kSaohBuckets) / spread[dim];
-      std::array<SaohBounds, kSaohBuckets> buckets;
-      for (const SaohItem& it : items) buckets[bucket_of(it.centre[dim], lo, scale)].add(leaf[it.entry]);
-      // Costs of the splits after bucket i: the left sides in one sweep, the right in another.
+      const Buckets& buckets = binned[dim];
+      // Costs of the splits after bucket i: the left sides in one sweep, the right in another; a
+      // side's cost is evaluated again only where an empty bucket did not leave it as it was
+      // (short ranges fill few buckets, and most of a build's splits are of short ranges).
+      constexpr double kNone = std::numeric_limits<double>::infinity();
       std::array<double, kSaohBuckets - 1> cost{};
       const double kr = double(widest) / double(extent[dim]);
       SaohBounds below;
+      double side = kNone;
       for (int i = 0; i < kSaohBuckets - 1; ++i) {
-        below.add(buckets[i]);
-        cost[i] = below.count == 0 ? std::numeric_limits<double>::infinity() : saoh_cost(below, kr, floor);
+        if (buckets[i].count > 0) {
+          below.add(buckets[i]);
+          side = saoh_cost(below, kr, floor);
+        }
+        cost[i] = side;
       }
       SaohBounds above;
+      side = kNone;
       for (int i = kSaohBuckets - 1; i >= 1; --i) {
-        above.add(buckets[i]);
-        if (above.count == 0) cost[i - 1] = std::numeric_limits<double>::infinity();
-        else cost[i - 1] += saoh_cost(above, kr, floor);
+        if (buckets[i].count > 0) {
+          above.add(buckets[i]);
+          side = saoh_cost(above, kr, floor);
+        }
+        cost[i - 1] += side;
       }
       for (int i = 0; i < kSaohBuckets - 1; ++i)
         if (cost[i] < best_cost) {
@@ -347,6 +358,36 @@ struct SaohBuilder {
 
   static int bucket_of(float x, float lo, float scale) {
     return std::clamp(int((x - lo) * scale), 0, kSaohBuckets - 1);
+  }
+
+  using Buckets = std::array<SaohBounds, kSaohBuckets>;
+
+  // The lights in each axis's buckets over the centres' bounds (an axis where they do not spread
+  // stays empty). Chunks of kSaohChunk lights are binned in parallel and united in order: the
+  // same buckets for any number of threads.
+  std::array<Buckets, 3> bin(std::span<const SaohItem> items, const Bounds3& centres) const {
+    const glm::vec3 spread = centres.extent();
+    auto fill = [&](std::span<const SaohItem> chunk, std::array<Buckets, 3>& out) {
+      for (int dim = 0; dim < 3; ++dim) {
+        if (!(spread[dim] > 0.0f)) continue;
+        const float lo = centres.lo[dim], scale = float(kSaohBuckets) / spread[dim];
+        for (const SaohItem& it : chunk) out[dim][bucket_of(it.centre[dim], lo, scale)].add(leaf[it.entry]);
+      }
+    };
+    std::array<Buckets, 3> total;
+    const size_t chunks = (items.size() + kSaohChunk - 1) / kSaohChunk;
+    if (chunks <= 1) {
+      fill(items, total);
+      return total;
+    }
+    std::vector<std::array<Buckets, 3>> partial(chunks);
+    tbb::parallel_for(size_t(0), chunks, [&](size_t c) {
+      fill(items.subspan(c * kSaohChunk, std::min(kSaohChunk, items.size() - c * kSaohChunk)), partial[c]);
+    });
+    for (const std::array<Buckets, 3>& p : partial)
+      for (int dim = 0; dim < 3; ++dim)
+        for (int b = 0; b < kSaohBuckets; ++b) total[dim][b].add(p[dim][b]);
+    return total;
   }
 };
 

@@ -4,10 +4,12 @@
 // (chi-square, fixed seeds); a light gets probability 0 only where it provably sends nothing to
 // the point; the tree's nodes bound their children; a pick's pmf equals the pmf asked for it.
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <random>
 
 #include "core/lights/emitter_tree_build.h"
@@ -110,6 +112,20 @@ TEST(EmitterTree, InnerNodesBoundTheirChildren) {
       EXPECT_EQ(packed.tree[node].children, 0u);
     }
   }
+}
+
+// Ranges longer than a chunk are binned in parallel: the tree must not depend on the threads.
+TEST(EmitterTree, TheSaohBuildIsTheSameOnAnyThreadCount) {
+  Scene scene = test::many_lights(8, 40000, 20, 20, false);
+  auto build = [&](int threads) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, size_t(threads));
+    return LightSampler(scene, LightSamplerKind::Tree).packed().tree;
+  };
+  const EmitterNodes one = build(1), two = build(2), four = build(4);
+  ASSERT_EQ(one.size(), two.size());
+  ASSERT_EQ(one.size(), four.size());
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(EmitterNode)), 0);
+  EXPECT_EQ(std::memcmp(one.data(), four.data(), one.size() * sizeof(EmitterNode)), 0);
 }
 
 TEST(EmitterTree, ConeUnionHoldsBothCones) {

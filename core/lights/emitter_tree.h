@@ -155,7 +155,7 @@ SST_FUNC float emitter_top_total(LIGHT_CTX_PARAM vec3 p, vec3 n, SST_OUT(float) 
   return total;
 }
 
-// The walk from `node` (any node; one at or past the leaves is the light itself) down to a leaf,
+// The walk from `node` (any node; a leaf or a directional light's node is the light itself) down to a leaf,
 // each child chosen with u in [0, 1) in proportion to its weight for p, n: the leaf's
 // distribution entry, or LIGHT_NONE where both children of a node weigh zero. `prob` is
 // multiplied by each choice's probability and `u` is left at its position within the chosen
@@ -246,10 +246,10 @@ SST_FUNC void emitter_tree_pmf(LIGHT_CTX_PARAM vec3 p, vec3 n, uint entry, SST_O
   if (!(w > 0.0f)) return;
   float prob = w / total;
   if (node < 2u * leaves) {
-    // The path from the root, read upward through the parents: bit k of (trail_lo, trail_hi)
-    // tells which child was taken k levels above the leaf (the build keeps the depth within
-    // kEmitterTreeMaxDepth = 64). Then the choices are multiplied from the root down, as the
-    // pick multiplies them.
+    // The path from the root, read upward through the parents: bit k of (trail_lo, trail_hi) is
+    // 1 where the path's node k levels above the leaf (k = 0: the leaf) is its parent's second
+    // child; the build keeps the depth within kEmitterTreeMaxDepth = 64. Then the choices are
+    // multiplied from the root down, as the pick multiplies them.
     uint trail_lo = 0u;
     uint trail_hi = 0u;
     uint depth = 0u;

@@ -122,8 +122,7 @@ double theta_of(const glsl::EmitterNode& n) {
   return std::acos(double(n.cos_o));
 }
 
-
-// A light as a leaf of the tree at `node` below `parent`.
+// A light as a leaf of the tree below `parent`.
 glsl::EmitterNode leaf_node(const glsl::EmitterNode& light, uint32_t entry, uint32_t parent) {
   glsl::EmitterNode leaf = light;
   leaf.entry = entry;
@@ -255,10 +254,10 @@ struct SaohBuilder {
   EmitterTree& tree;
   std::vector<double>& theta;        // per node: its merged cone's half angle (merge_nodes)
 
-  // The lights items[b, e) below `node`, whose parent is `parent`; its descendants take the
-  // nodes from `block` on: the children pair first, then the left child's block (2 m_left - 2
-  // nodes), then the right child's. So a subtree of m lights fills 2m - 1 consecutive slots
-  // after its root's, and the layout depends on the split alone, not on the threads.
+  // Builds the subtree of `items` at `node`, below `parent`. The node's descendants take the
+  // slots from `block` on: its children's pair first, then the left child's descendants
+  // (2 m_left - 2 slots), then the right child's. So a subtree of m lights fills 2m - 1 slots,
+  // and the layout depends on the splits alone, not on the threads.
   void build(std::span<SaohItem> items, uint32_t node, uint32_t parent, uint32_t block, uint32_t depth) {
     if (items.size() == 1) {
       const uint32_t entry = items[0].entry;
@@ -306,7 +305,7 @@ struct SaohBuilder {
       });
       return mid;
     };
-    // Two lights: every split is the same pair of leaves (a quarter of the build's time was theirs).
+    // Two lights: every split gives the same pair of leaves.
     if (m == 2 || depth + std::bit_width(m - 1) >= kEmitterTreeMaxDepth) return median();
     const double floor = 1e-3 * double(widest);
     double best_cost = std::numeric_limits<double>::infinity();

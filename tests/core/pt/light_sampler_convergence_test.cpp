@@ -20,7 +20,8 @@ namespace {
 
 constexpr int kSize = 32, kBlock = 4, kSeeds = 12;
 
-test::SeedBlockMeans render_blocks(const Scene& scene, const char* sampler, int max_bounces, int spp) {
+// `sampler`: a light sampler's name, or sampler:tree build:tree distance (e.g. tree:morton:box).
+test::SeedBlockMeans render_blocks(const Scene& scene, const std::string& sampler, int max_bounces, int spp) {
   test::SeedBlockMeans s(kSize, kSize, kBlock);
   for (int seed = 0; seed < kSeeds; ++seed) {
     RenderOptions o;
@@ -29,7 +30,16 @@ test::SeedBlockMeans render_blocks(const Scene& scene, const char* sampler, int 
     o.spp = spp;
     o.seed = uint32_t(100 + seed);
     o.diffuse_only = true;
-    o.light_sampler = sampler;
+    std::string rest = sampler;
+    auto take = [&rest] {
+      const size_t colon = rest.find(':');
+      std::string part = rest.substr(0, colon);
+      rest = colon == std::string::npos ? "" : rest.substr(colon + 1);
+      return part;
+    };
+    o.light_sampler = take();
+    if (!rest.empty()) o.light_tree = take();
+    if (!rest.empty()) o.light_tree_distance = take();
     s.add(render_frame(scene, o, {{"max_bounces", max_bounces}}).frame.color);
   }
   return s;
@@ -52,7 +62,15 @@ void expect_same_image(const Scene& scene, int max_bounces, int spp,
 }
 
 TEST(LightSamplerConvergence, DirectLightOfManyLightsIsTheSameWithEverySampler) {
-  expect_same_image(test::many_lights(31, 800, 5, 5, true), 0, 16);
+  expect_same_image(test::many_lights(31, 800, 5, 5, true), 0, 16,
+                    {"uniform", "tree", "slc", "tree:morton:box", "tree:saoh:mixed", "slc:morton"});
+}
+
+// The wide field of two-sided quads and punctual lights (test::light_field) with both tree builds
+// and every distance rule.
+TEST(LightSamplerConvergence, DirectLightOfALightFieldIsTheSameWithEveryTree) {
+  expect_same_image(test::light_field(33, 600, 10, 5), 0, 16,
+                    {"tree", "slc", "tree:morton:centre", "tree:saoh:box", "tree:morton:box", "tree:saoh:mixed"});
 }
 
 TEST(LightSamplerConvergence, TwoBouncesOfManyLightsAreTheSameWithEverySampler) {

@@ -88,9 +88,13 @@ TEST(EmitterTree, InnerNodesBoundTheirChildren) {
         EXPECT_TRUE(glm::all(glm::lessThanEqual(parent.lo, child.lo)) && glm::all(glm::greaterThanEqual(parent.hi, child.hi)))
             << i;
         // The child's cone lies in the parent's: angle between axes + child's half angle <= parent's;
-        // a two-sided parent may hold the child's cone turned about.
+        // a two-sided parent may hold the child's cone turned about. The child's half angle is the
+        // least its float cosine can stand for: the build unites cones at their exact angles and
+        // stores each cosine rounded down, and near 0 one float step of a cosine is many times
+        // the parent's 1e-6 of slack (a clang build failed here by 1e-6 with the stored angle).
         if (parent.cos_o > -1.0f) {
-          double theta_child = std::acos(std::clamp(double(child.cos_o), -1.0, 1.0));
+          const float cos_child = child.cos_o >= 1.0f ? 1.0f : std::nextafter(child.cos_o, 2.0f);
+          double theta_child = std::acos(std::clamp(double(cos_child), -1.0, 1.0));
           double theta_parent = std::acos(std::clamp(double(parent.cos_o), -1.0, 1.0));
           double between = angle(parent.axis, child.axis);
           if (parent.flags & EMITTER_TWO_SIDED) between = std::min(between, angle(parent.axis, -child.axis));

@@ -301,7 +301,18 @@ json rmse_cell(const json& group) {
   return cell(fmt(number(group, "rmse_mean")) + (std::isfinite(std_dev) ? " \u00b1 " + fmt(std_dev, 2) : ""));
 }
 
-json group_row(const Index& index, const json& g, const std::vector<std::string>& axes) {
+// The mean over the runs of their masked errors' `key` (reference "mask"; squared for "rmse": an
+// MSE), NaN where no run has them.
+double masked_mean(const std::vector<const json*>& runs, const char* key, bool squared) {
+  std::vector<double> values;
+  for (const json* r : runs) {
+    const double v = number(member(member(*r, "metrics"), "masked"), key);
+    values.push_back(squared ? v * v : v);
+  }
+  return mean_finite(values);
+}
+
+json group_row(const Index& index, const json& g, const std::vector<std::string>& axes, bool masked) {
   const std::vector<const json*> runs = index.runs_of(g);
   const bool pareto = member(g, "pareto") == true;
   double ssim = number(g, "ssim_mean");
@@ -313,8 +324,13 @@ json group_row(const Index& index, const json& g, const std::vector<std::string>
     cells.push_back(cell(v.is_null() ? kDash : text_of(v)));
   }
   for (json c : {spp_cell(runs), time_cell(g, runs), rmse_cell(g),
-                 cell(fmt(mean_finite(run_values(runs, "metrics", "rel_mse")))),
-                 cell(fmt(mean_finite(run_values(runs, "metrics", "psnr")))), cell(fmt(ssim)),
+                 cell(fmt(mean_finite(run_values(runs, "metrics", "rel_mse"))))})
+    cells.push_back(std::move(c));
+  if (masked) {
+    cells.push_back(cell(fmt(masked_mean(runs, "rmse", true))));
+    cells.push_back(cell(fmt(masked_mean(runs, "rel_mse", false))));
+  }
+  for (json c : {cell(fmt(mean_finite(run_values(runs, "metrics", "psnr")))), cell(fmt(ssim)),
                  cell(fmt(mean_finite(run_values(runs, nullptr, "efficiency")))),
                  cell(fmt(mean_finite(run_values(runs, nullptr, "ssim_gain_pct_per_ms")))),
                  cell(fmt(number(g, "bias2"))), cell(fmt(number(g, "variance"))), cell(std::to_string(runs.size()))})
@@ -326,12 +342,22 @@ json group_table(const Index& index, const Scene& scene) {
   const std::vector<std::string> axes = axis_names(scene);
   json head = {with(head_cell("\u2605"), "title", "Pareto front"), head_cell("label")};
   for (const std::string& a : axes) head.push_back(head_cell(a));
+  // Masked columns when a run of the scene was measured against an emitter mask.
+  bool masked = false;
+  for (const json* g : scene.groups)
+    for (const json* r : index.runs_of(*g)) masked = masked || member(member(*r, "metrics"), "masked").is_object();
   for (json c : {head_cell("spp"), head_cell("time ms", "median [min..max]"), head_cell("RMSE", "mean \u00b1 std"),
-                 head_cell("rel MSE"), head_cell("PSNR dB"), head_cell("SSIM"), head_cell("efficiency 1/s"),
-                 head_cell("SSIM gain %/ms"), head_cell("bias\u00b2"), head_cell("variance"), head_cell("seeds")})
+                 head_cell("rel MSE")})
+    head.push_back(std::move(c));
+  if (masked) {
+    head.push_back(head_cell("MSE masked", "pixels no visible emitter touches"));
+    head.push_back(head_cell("rel MSE masked", "pixels no visible emitter touches"));
+  }
+  for (json c : {head_cell("PSNR dB"), head_cell("SSIM"), head_cell("efficiency 1/s"), head_cell("SSIM gain %/ms"),
+                 head_cell("bias\u00b2"), head_cell("variance"), head_cell("seeds")})
     head.push_back(std::move(c));
   json rows = json::array();
-  for (const json* g : scene.groups) rows.push_back(group_row(index, *g, axes));
+  for (const json* g : scene.groups) rows.push_back(group_row(index, *g, axes, masked));
   return table("groups", head, rows,
                "\u2605 on the RMSE-vs-time Pareto front of this scene. Time, RMSE, SSIM, bias\u00b2 and variance are "
                "over the group's seeds; rel MSE, PSNR, efficiency and SSIM gain are means over its runs.");

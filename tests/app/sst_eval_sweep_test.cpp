@@ -6,6 +6,7 @@
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -152,6 +153,9 @@ TEST(SstEvalSweep, AMaskedReferenceMeasuresThePixelsNoEmitterTouches) {
   EXPECT_GT(m["masked"]["rmse"].get<double>(), 0.0);
   test::CommandResult md = eval("table " + (dir / "out").string());
   EXPECT_NE(md.output.find("| RMSE | relMSE | MSE masked | relMSE masked |"), std::string::npos) << md.output;
+  std::ifstream report(dir / "out/report.html");
+  const std::string html((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(html.find("rel MSE masked"), std::string::npos);
 }
 
 }  // namespace

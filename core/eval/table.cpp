@@ -56,14 +56,16 @@ Row group_row(const nlohmann::json& g, const std::map<std::string, const nlohman
   if (g["rmse_std"].is_number()) rmse += " ± " + fixed(number(g["rmse_std"]), 2);
   row.push_back(rmse);
   row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["metrics"]["rel_mse"]); })));
-  if (masked)
-    for (const char* key : {"rmse", "rel_mse"})
-      row.push_back(fixed(group_mean(g, runs, [key](const nlohmann::json& r) {
-        const nlohmann::json& m = r["metrics"];
-        if (!m.contains("masked")) return double(NAN);
-        const double v = number(m["masked"][key]);
-        return std::string(key) == "rmse" ? v * v : v;  // MSE: means over seeds of squared errors
-      })));
+  if (masked) {
+    // MSE: the mean over the runs of their squared masked RMSE.
+    row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) {
+      const double v = number(member(member(r, "metrics"), "masked"), "rmse");
+      return v * v;
+    })));
+    row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) {
+      return number(member(member(r, "metrics"), "masked"), "rel_mse");
+    })));
+  }
   row.push_back(fixed(number(g["ssim_mean"])));
   row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["ssim_gain_pct_per_ms"]); }), 3));
   row.push_back(g.value("pareto", false) ? "yes" : "");

@@ -472,7 +472,7 @@ EmitterTree build_emitter_tree(std::span<const glsl::EmitterNode> lights, Emitte
   resize_uninitialized(tree.nodes, node_count, /*huge_pages=*/true);  // unwritten: every node is written once below
   if (tree.leaves > 0) tree.nodes[0] = empty_node();
   if (build == EmitterTreeBuild::Morton)
-    build_morton(lights, in_tree, tree);
+    build_morton(lights, std::move(in_tree), tree);
   else if (n > 0)
     build_saoh(lights, std::move(in_tree), tree);
   for (uint32_t k = 0; k < directional.size(); ++k) {

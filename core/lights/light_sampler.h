@@ -1,10 +1,11 @@
 // Direct-light sampling over every light of a scene: punctual lights (point, spot, directional)
 // and emissive triangles, one light picked by the chosen LightSamplerKind (uniformly, in
-// proportion to its power as METHODS.md §0 has it, or for the shading point down the emitter
-// tree, core/lights/emitter_tree.h), then a point on it: uniform by solid angle for a triangle that subtends a large angle from the
-// shading point, uniform by area otherwise. Also answers the pdf of hitting an emissive
-// triangle by BSDF sampling, for multiple importance sampling. Also samples where light leaves
-// the lights (`sample_emission`), for light paths: instant radiosity's VPLs (METHODS.md §1).
+// proportion to its power, or for the shading point down the emitter tree,
+// core/lights/emitter_tree.h and docs/light-trees.md), then a point on it: uniform by solid
+// angle for a triangle that subtends a large angle from the shading point, uniform by area
+// otherwise. Also answers the pdf of hitting an emissive triangle by BSDF sampling, for multiple
+// importance sampling. Also samples where light leaves the lights (`sample_emission`), for light
+// paths: instant radiosity's VPLs (core/vpl/vpl_generator.h).
 // LightSampler builds the tables (core/lights/light_layout.h); the sampling is
 // core/lights/light_sample.h, shared with the GPU.
 #pragma once

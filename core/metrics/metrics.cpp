@@ -60,20 +60,26 @@ dvec3 mean_rgb(const Image& image) {
 
 struct ErrorSums {
   double squared = 0.0, relative = 0.0, absolute = 0.0;
+  size_t pixels = 0;
 };
 
 // Sums per row in parallel, then over rows in order: the same bits whatever the thread count.
-ErrorSums error_sums(const Image& test, const Image& reference) {
-  const size_t row_values = size_t(test.width) * test.channels;
+// With a mask, only the pixels where its RGB is 0. Inputs hold finite values.
+ErrorSums error_sums(const Image& test, const Image& reference, const Image* mask = nullptr) {
+  const int channels = test.channels;
   std::vector<ErrorSums> rows(test.height);
   tbb::parallel_for(tbb::blocked_range<int>(0, test.height), [&](const tbb::blocked_range<int>& range) {
     for (int y = range.begin(); y < range.end(); ++y) {
       ErrorSums s;
-      for (size_t i = size_t(y) * row_values; i < size_t(y + 1) * row_values; ++i) {
-        const double t = test.data[i], r = reference.data[i], d = t - r;
-        s.squared += d * d;
-        s.relative += d * d / (r * r + 0.01);
-        s.absolute += std::abs(d);
+      for (int x = 0; x < test.width; ++x) {
+        if (mask && mask->rgb(x, y) != vec3(0.0f)) continue;
+        ++s.pixels;
+        for (size_t i = (size_t(y) * test.width + x) * channels, end = i + channels; i < end; ++i) {
+          const double t = test.data[i], r = reference.data[i], d = t - r;
+          s.squared += d * d;
+          s.relative += d * d / (r * r + 0.01);
+          s.absolute += std::abs(d);
+        }
       }
       rows[y] = s;
     }
@@ -83,6 +89,7 @@ ErrorSums error_sums(const Image& test, const Image& reference) {
     total.squared += s.squared;
     total.relative += s.relative;
     total.absolute += s.absolute;
+    total.pixels += s.pixels;
   }
   return total;
 }
@@ -109,27 +116,17 @@ MaskedErrors masked_errors(const Image& test, const Image& reference, const Imag
   if (mask.width != test.width || mask.height != test.height)
     throw Error("the mask is " + std::to_string(mask.width) + "x" + std::to_string(mask.height) + ", the images " +
                 std::to_string(test.width) + "x" + std::to_string(test.height));
+  Image t = test, r = reference;
+  zero_nonfinite(t);
+  zero_nonfinite(r);
+  const ErrorSums sums = error_sums(t, r, &mask);
   MaskedErrors e;
-  double squared = 0.0, relative = 0.0, absolute = 0.0;
-  for (int y = 0; y < test.height; ++y)
-    for (int x = 0; x < test.width; ++x) {
-      if (mask.rgb(x, y) != vec3(0.0f)) continue;
-      ++e.pixels;
-      for (int c = 0; c < test.channels; ++c) {
-        const size_t i = (size_t(y) * test.width + x) * test.channels + c;
-        const double t = std::isfinite(test.data[i]) ? test.data[i] : 0.0;
-        const double r = std::isfinite(reference.data[i]) ? reference.data[i] : 0.0;
-        const double d = t - r;
-        squared += d * d;
-        relative += d * d / (r * r + 0.01);
-        absolute += std::abs(d);
-      }
-    }
+  e.pixels = sums.pixels;
   const double n = double(e.pixels) * test.channels;
   if (n > 0) {
-    e.rmse = std::sqrt(squared / n);
-    e.rel_mse = relative / n;
-    e.mae = absolute / n;
+    e.rmse = std::sqrt(sums.squared / n);
+    e.rel_mse = sums.relative / n;
+    e.mae = sums.absolute / n;
   }
   return e;
 }

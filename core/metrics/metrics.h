@@ -1,4 +1,4 @@
-// Image metrics of a test image against a reference (METHODS.md §6).
+// Image metrics of a test image against a reference, each defined beside its field below.
 #pragma once
 #include <cstddef>
 #include <nlohmann/json_fwd.hpp>

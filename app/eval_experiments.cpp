@@ -24,8 +24,13 @@ void add_scene_options(CLI::App* cmd, std::vector<std::string>& scene_dirs, std:
   cmd->add_option("--cache-dir", cache_dir, "reference cache [SST_CACHE_DIR or ~/.cache/sst/references]");
 }
 
+// The table goes to stdout, so that a sweep piped into a file keeps it; where the files are, to
+// stderr with the progress.
 void print_summary(const nlohmann::json& results, const std::string& dir) {
-  std::fprintf(stderr, "%zu runs -> %s/results.json, results.csv, report.html\n", results["runs"].size(), dir.c_str());
+  std::fputs(format_table(results, "markdown", {}).c_str(), stdout);
+  std::fflush(stdout);
+  std::fprintf(stderr, "%zu runs -> %s/results.json, results.csv; open %s\n", results["runs"].size(), dir.c_str(),
+               (fs::path(dir) / "report.html").string().c_str());
 }
 
 }  // namespace

@@ -4,9 +4,9 @@
 # corpus seeded from tests/fuzz/corpus/<name>/ (the committed seeds are only read). A sanitizer
 # report fails the unit tests; a crash, sanitizer report, input over 10 s or heap over 2 GB stops
 # that harness, leaves the input in build-fuzz/findings/ and fails the script.
-# Unit tests: those under UNIT_TEST_SECONDS (default 2) in the Release build's last ctest run
-# (build/Testing/Temporary/CTestCostData.txt: in CI, the run just before), so that the renders,
-# which ASan slows several times, stay in the Release run; all tests where there is no such run.
+# Unit tests: those labelled `unit` (tests/CMakeLists.txt, docs/testing.md), so that the renders,
+# which ASan slows several times, stay in the Release run; they run in one process, as starting
+# the sanitized test binary once per test would cost more than the tests.
 # Usage: scripts/fuzz.sh [SECONDS] [HARNESS ...]   (harnesses: gltf texture config image)
 #        scripts/fuzz.sh --ci   (CI: the unit tests, then a fixed number of inputs per harness
 #                               from a fixed seed, so that a run is repeatable; about half a
@@ -34,15 +34,10 @@ mkdir -p build-fuzz/findings
 export LSAN_OPTIONS="suppressions=$PWD/tests/fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 status=0
 if [ $unit_tests = 1 ]; then
-  filter="*"
-  costs=build/Testing/Temporary/CTestCostData.txt
-  if [ -f $costs ]; then
-    limit=${UNIT_TEST_SECONDS:-2}
-    # ctest names a parameterized test by its value (Prefix/Suite.Test/"radix"), gtest by its index.
-    filter=$(awk -v limit="$limit" '$1 == "---" { exit }
-             NF >= 3 && $NF < limit && $1 != "metrics_check" { n = $1; if (gsub("/", "/", n) >= 2) sub("/[^/]*$", "/*", n); print n }' \
-             $costs | sort -u | paste -sd: -)
-  fi
+  # ctest names a parameterized test by its value (Prefix/Suite.Test/"radix"), gtest by its index.
+  filter=$(ctest --test-dir build-fuzz -N -L '^unit$' | sed -n 's/^ *Test *#[0-9]*: //p' |
+           awk '{ n = $1; if (gsub("/", "/", n) >= 2) sub("/[^/]*$", "/*", n); print n }' | sort -u | paste -sd: -)
+  [ -n "$filter" ] || { echo "no test labelled unit in build-fuzz"; exit 1; }
   count=$(build-fuzz/tests/sst_tests --gtest_list_tests --gtest_filter="$filter" | grep -c '^  ' || true)
   echo "unit tests under ASan and UBSan: $count tests"
   start=$(date +%s)

@@ -67,8 +67,8 @@ std::string cell(const std::string& text) {
   return out;
 }
 
-// The README's section on methods and their parameters, between its marker comments (both
-// printed here, so the section is replaced whole). README.md holds exactly this text, and
+// docs/methods.md's section on methods and their parameters, between its marker comments (both
+// printed here, so the section is replaced whole). docs/methods.md holds exactly this text, and
 // tests/app/readme_test.cpp fails when it does not: the parameter documentation is the visit()
 // help strings and the registry's descriptions, never a copy kept by hand.
 void print_methods_markdown() {
@@ -289,7 +289,7 @@ int main(int argc, char** argv) {
                "render the scene's emitters alone (every surface black, no punctual lights; implies --diffuse-only): "
                "its non-zero pixels are those a directly seen emitter touches, a mask for sst-eval compare --mask");
   CLI::Option* list_methods = app.add_flag("--list-methods", args.list_methods, "list methods and their parameters");
-  app.add_flag("--markdown", args.markdown, "with --list-methods: print the README's method tables (Markdown)")
+  app.add_flag("--markdown", args.markdown, "with --list-methods: print the method tables of docs/methods.md (Markdown)")
       ->needs(list_methods);
   app.add_flag("--list-devices", args.list_devices, "list the Vulkan devices (for --backend vulkan) and exit");
   flags.add(app, sst::param_table<sst::RenderOptions>(), "Render options");

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders every paper config into results/<name>/ and writes its tables (Markdown) beside it.
 # Usage: scripts/reproduce_papers.sh [config names...]   (default: all paper configs)
-# Needs ../shared/scenes (or SST_SCENE_PATH) and a Release build in build/. References are
+# Needs ../shared/scenes (or the folder in SST_SCENE_DIR) and a Release build in build/. References are
 # cached (SST_CACHE_DIR, default ~/.cache/sst/references), so a rerun renders only the runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."

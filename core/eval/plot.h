@@ -44,7 +44,7 @@ struct Plot {
   int height = 400;
 };
 
-// The plot's view model, the data plot.svg draws (keys in core/eval/README.md). Points with a
+// The plot's view model, the data plot.svg draws (keys in docs/sst-eval.md). Points with a
 // non-finite coordinate, or a non-positive one on a log axis, are left out (not drawn, not counted
 // in the axis range). Pixel positions are rounded to 0.1 px.
 nlohmann::json plot_view(const Plot& plot);

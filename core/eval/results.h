@@ -1,4 +1,4 @@
-// results.json and results.csv of a sweep (schema: core/eval/README.md): the run records plus
+// results.json and results.csv of a sweep (schema: docs/sst-eval.md): the run records plus
 // what needs all of them: per-group statistics over seeds (bias and variance), efficiency, the
 // SST paper's SSIM gain per ms, and the error-vs-time Pareto front.
 #pragma once

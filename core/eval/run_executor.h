@@ -28,7 +28,7 @@ struct RunReference {
 using FrameReference = std::function<RunReference(int index, double time, const Scene& posed)>;
 
 // Renders `run` and writes <run_dir>/image.exr, image.png, error.png, then run.json. Returns the
-// run's record (the schema of core/eval/README.md, without the cross-run fields). A sequence run
+// run's record (the schema of docs/sst-eval.md, without the cross-run fields). A sequence run
 // (more than one frame, warm-up frames, temporal reuse, a denoiser or upsampling) is measured
 // frame by frame against `frame_reference` instead of `reference`; `scene` is posed while it runs
 // and restored after.

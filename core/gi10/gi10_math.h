@@ -1,4 +1,4 @@
-// GI-1.0's building blocks (Boisse et al. 2022; the specification is GI1.md), written once for
+// GI-1.0's building blocks (Boisse et al. 2022; specified in docs/design/gi10.md), written once for
 // the CPU and the GPU (core/math/cpu_gpu.h): the equal-area hemispherical probe map and the probe
 // frame, L2 spherical harmonics, the hash functions and cell descriptor of the world cache, the
 // shadow-preserving hysteresis, the cache's count-capped average, the Halton spawn jitter and the

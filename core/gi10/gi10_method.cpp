@@ -26,7 +26,8 @@ const char* kStageNames[] = {"gbuffer", "purge",  "reproject", "spawn",       "s
                              "copy_probes", "feedback", "empty_tiles", "list_count", "list_scan",
                              "list_compact", "patch"};
 
-// The paper's three buckets (GI1.md §12.2); the G-buffer, feedback image and direct pass apart.
+// The paper's three timing buckets (docs/design/gi10.md, the record); the G-buffer, feedback
+// image and direct pass apart.
 const char* bucket_of(uint32_t stage) {
   switch (stage) {
     case GI10_STAGE_TRACE:
@@ -133,7 +134,7 @@ class Gi10Cpu final : public Gi10Executor {
   Gi10Buffers b_;
 };
 
-// tan(fov_y * px * max(1 / H, H / W^2)): the angle `px` pixels subtend (GI1.md §3.4).
+// tan(fov_y * px * max(1 / H, H / W^2)): the angle `px` pixels subtend (the paper's Algorithm 6).
 float pixel_angle_tan(const glsl::ViewParams& view, float px) {
   double fov_y = 2.0 * std::atan(double(view.tan_half_y));
   double w = double(view.width), h = double(view.height);

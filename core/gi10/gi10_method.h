@@ -1,4 +1,4 @@
-// `gi10`: GI-1.0 (Boisse et al. 2022, AMD; the specification is GI1.md), two-level radiance
+// `gi10`: GI-1.0 (Boisse et al. 2022, AMD; specified in docs/design/gi10.md), two-level radiance
 // caching: screen probes traced at 1/4 ray per pixel and a world-space hash-grid cache of
 // radiance at their hits, reprojected, filtered and denoised over frames. sst adds its direct
 // pass (every method's, core/pt) so that images compare with the other methods.

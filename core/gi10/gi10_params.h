@@ -1,4 +1,4 @@
-// The parameters of `gi10` (GI-1.0, GI1.md §11 with sst's choices of §7.2). Every constant of
+// The parameters of `gi10` (GI-1.0; docs/design/gi10.md, presets). Every constant of
 // Capsaicin's implementation is a field with its default; the switches in which the presets
 // differ read "auto" and take the preset's value (resolve_gi10).
 #pragma once
@@ -49,10 +49,10 @@ struct Gi10Params {
     v("probe_emission", probe_emission, "auto|on|off: probe rays that hit an emitter return its emission (on "
       "double-counts direct light with sst's direct pass)");
     v("backup", backup, "auto|mean|spread: radiance of probe texels no ray reached: the mean of the reached "
-      "texels (fair) or that mean spread over the empty ones, divided by their number (capsaicin; GI1.md B4)");
-    v("sh_weight", sh_weight, "auto|solid_angle|capsaicin: SH projection weight per texel, 2 pi/64 or 1/8 (B3)");
+      "texels (fair) or that mean spread over the empty ones, divided by their number (capsaicin)");
+    v("sh_weight", sh_weight, "auto|solid_angle|capsaicin: SH projection weight per texel, 2 pi/64 (solid_angle) or 1/8 (capsaicin)");
     v("blur_mask", blur_mask, "auto|full|capsaicin: the denoiser's blur-mask dilation; capsaicin skips the centre "
-      "row and column (B7)");
+      "row and column");
     v("cell_base", cell_base, "auto|scene|capsaicin: cache cells are 2^k times 2^(floor(log2 D)-16) with D the "
       "diagonal of the points visible at frame 0 and at least min_cell_ratio D (scene), or 2^-10 units and at "
       "least 0.1 units (capsaicin)");

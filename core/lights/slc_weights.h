@@ -1,4 +1,4 @@
-// Yuksel's stochastic-lightcut child weights (SLC, Yuksel 2019; METHODS.md section 3) for two
+// Yuksel's stochastic-lightcut child weights (SLC, Yuksel 2019; docs/design/methods.md) for two
 // boxes of light, in the common subset of C++ and GLSL: the one text behind `slc` over VPL trees
 // (core/manylight/slc) and the `slc` light sampler over the emitter tree (core/lights/emitter_tree.h).
 //   w_i = lum_i * cosbound_i / dmin_i^2

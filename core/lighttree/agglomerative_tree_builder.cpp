@@ -1,6 +1,6 @@
-// The slow, high-quality baseline (METHODS.md §2): greedy agglomerative clustering as in
-// Lightcuts (Walter et al. 2005, §4.1): repeatedly merge the pair of clusters whose union is
-// smallest by the oriented-light size metric
+// The light-tree builders' slow, high-quality baseline (docs/design/methods.md): greedy
+// agglomerative clustering as in Lightcuts (Walter et al. 2005, §4.1): repeatedly merge the pair
+// of clusters whose union is smallest by the oriented-light size metric
 //     M(C) = I_C (alpha_C^2 + c^2 (1 - cos beta_C)^2),
 // I_C the cluster's luminance, alpha_C its box diagonal, beta_C the half-angle of the cone
 // bounding its normals and c = D, the tree's length scale (Walter: the scene diagonal).

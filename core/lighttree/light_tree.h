@@ -1,16 +1,17 @@
-// Light trees over a VPL set (METHODS.md §2): a binary hierarchy whose every node carries the
-// summed intensity, bounding box and VPL count of its subtree, plus the SST substitute
-// distribution of its VPLs (Tatzgern et al. 2020, eqs. 1-3). The samplers of METHODS.md §3 walk
-// it; all builders produce the same flat node layout, so every sampler works on every tree.
+// Light trees over a VPL set (docs/design/methods.md, light trees): a binary hierarchy whose
+// every node carries the summed intensity, bounding box and VPL count of its subtree, plus the
+// SST substitute distribution of its VPLs (Tatzgern et al. 2020, eqs. 1-3). The tree samplers
+// (slc, sst, rtslc, hybrid) walk it; all builders produce the same flat node layout, so every
+// sampler works on every tree.
 // Its parameters are LightTreeParams below; their visit() help is their documentation.
 //
 // Length scale D. sigma_max is a fraction of D, never an absolute length, because scenes come
 // in millimetres and kilometres. By default D is the diagonal of the bounding box of the VPL
 // positions: the extent of what is lit, which unlike the scene box is not inflated by a large
 // ground plane or sky geometry outside a room. The paper's sigma_max = 0.1 is in its scene
-// units: roughly metres, in rooms some 20 units across, so 0.1 / 20 = 0.005 of D (METHODS.md's
-// figure; measured against the box diagonal of such a room, ~30 units, it would be nearer
-// 0.003: the conversion is a rough one either way, hence "measure the sensitivity"). The
+// units: roughly metres, in rooms some 20 units across, so 0.1 / 20 = 0.005 of D (measured
+// against the box diagonal of such a room, ~30 units, it would be nearer 0.003: the conversion
+// is a rough one either way, so the sensitivity to sigma_max is worth measuring). The
 // thesis's 0.3, by the same yardstick (it does not state its scene scale), is 0.015 of D.
 #pragma once
 #include <cstddef>

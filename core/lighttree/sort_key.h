@@ -1,4 +1,4 @@
-// Sort keys that order VPLs for the light-tree builders (SST paper eq. 4, METHODS.md §2):
+// Sort keys that order VPLs for the light-tree builders (SST paper eq. 4; docs/design/methods.md):
 // primarily by position (Morton code), then by normal direction, then by a unique id, so that
 // neighbours in the sorted array are close in space and face the same way.
 //

@@ -1,5 +1,5 @@
-// SST substitute distributions (Tatzgern et al. 2020, §3.2, eqs. 1-3; METHODS.md §2), and the
-// rest of a node that a bottom-up build derives from its two children (intensity, box, count).
+// SST substitute distributions (Tatzgern et al. 2020, §3.2, eqs. 1-3; docs/design/methods.md), and
+// the rest of a node that a bottom-up build derives from its two children (intensity, box, count).
 //
 // With weights c_i = luminance(I_i) of the two children:
 //   p  = (c1 p1 + c2 p2) / (c1 + c2)                                              (eq. 1)
@@ -22,7 +22,7 @@
 // frame of basis_from_normal (Duff et al. 2017) jumps where n.z changes sign (walls), turning
 // the tangent axes about n; that may swap s2.x and s2.y between children, never s2.z.
 //
-// Edge cases (DESIGN.md: handled where they arise):
+// Edge cases, handled here where they arise rather than patched over in the output:
 // - Zero total weight, c1 + c2 = 0 (all VPLs black): p = midpoint of p1 and p2, s2 = 0,
 //   n = normalize(n1 + n2).
 // - Normals that cancel, |c1 n1 + c2 n2| <= 1e-4 (c1 + c2): n = the normal of the child with the

@@ -1,4 +1,4 @@
-// Shared machinery of the per-block light-cut samplers (rtslc, hybrid; METHODS.md §3): box
+// Shared machinery of the per-block light-cut samplers (rtslc, hybrid; docs/design/methods.md): box
 // geometry bounds at a shading point, a greedy cut builder, and a per-block G-buffer traced at
 // chosen pixels during prepare.
 #pragma once

@@ -6,7 +6,7 @@
 //   the estimate switch                     estimate_indirect (gpu/shaders/indirect_sampler.glsl)
 //   the registry entries                    <name>_method_info(), core/pipeline/method_registry.cpp
 //   the test case lists                     tests/core/manylight/extremes_test.cpp, tests/gpu/
-// README "Adding a method" has the steps for a new one.
+// docs/design/adding-a-method.md has the steps for a new one.
 #ifndef SST_CORE_MANYLIGHT_MANY_LIGHT_METHODS_H
 #define SST_CORE_MANYLIGHT_MANY_LIGHT_METHODS_H
 

@@ -1,9 +1,9 @@
-// The glTF metallic-roughness BRDF of METHODS.md section 0, in a local shading basis (z = normal),
-// shared C++/GLSL source:
+// The glTF metallic-roughness BRDF every method shades with (docs/design/methods.md), in a local
+// shading basis (z = normal), shared C++/GLSL source:
 //   f = (1 - metallic) * baseColor / pi  +  D * G * F / (4 |n.wo| |n.wi|)
 // D: GGX with alpha = roughness^2; G: Smith height-correlated masking-shadowing; F: Schlick with
 // F0 = mix(0.04, baseColor, metallic). Diffuse-only mode keeps just Lambert baseColor / pi.
-// The two lobes are added (not energy-mixed), as METHODS.md specifies for every method.
+// The two lobes are added (not energy-mixed), the same for every method.
 // ggx_d, smith_g2_height_correlated and schlick_fresnel also serve the many-light samplers' bounds.
 #ifndef SST_CORE_MATERIAL_BRDF_H
 #define SST_CORE_MATERIAL_BRDF_H

@@ -53,7 +53,7 @@ MaskedErrors masked_errors(const Image& test, const Image& reference, const Imag
 // test's frame-to-frame change and the reference's, over all pixels and channels,
 //   mean(((t1 - t0) - (r1 - r0))^2),
 // so that motion the reference shows is no flicker, and noise that changes from frame to frame is.
-// Sequences report the square root of its mean over all consecutive pairs (core/eval/README.md).
+// Sequences report the square root of its mean over all consecutive pairs (docs/sst-eval.md).
 // Non-finite values count as 0, as in compare_images. Throws sst::Error when sizes differ.
 double flicker_mse(const Image& test0, const Image& test1, const Image& reference0, const Image& reference1);
 

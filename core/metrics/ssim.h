@@ -1,4 +1,4 @@
-// Structural similarity (Wang et al. 2004) exactly as METHODS.md §6 fixes it, i.e. scikit-image's
+// Structural similarity (Wang et al. 2004) exactly as sst's metrics define it, i.e. scikit-image's
 // structural_similarity(gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
 // data_range=1): 11x11 Gaussian window (sigma 1.5, truncate 3.5 -> radius 5, normalised),
 // K1 0.01, K2 0.03, population covariance, scipy 'reflect' borders, and the mean taken over the

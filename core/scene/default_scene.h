@@ -1,6 +1,6 @@
 // The built-in default scene, so that a first run needs nothing but the binary: the Cornell box
-// of scenes/cornell-box.gltf (the same scene as the shared Cycles reference
-// ../shared/scenes/cornell-box), compiled into the binary.
+// of scenes/cornell-box.gltf (yocto-gl's `cornellbox` preset, the scene the Cycles references of
+// the Cornell box were rendered from; docs/scenes.md has its credits), compiled into the binary.
 #pragma once
 #include <string_view>
 

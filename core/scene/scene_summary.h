@@ -1,5 +1,5 @@
 // What a scene contains and what it requires from the renderer: written into every JSON
-// record, and used to model only what the scene needs (DESIGN: "say so").
+// record, and used to model only what the scene needs, and to say so in the record.
 #pragma once
 #include <nlohmann/json.hpp>
 

@@ -1,9 +1,9 @@
-// One light path of instant radiosity (METHODS.md §1; shared C++/GLSL source, vpl_generator.h is
-// the generation): a light picked in proportion to its power, a point and a direction on it, then
-// a VPL at every diffuse surface the path reaches, continued by cosine-weighted bounces with
-// Russian roulette on the albedo after min_bounces. The path is a pure function of (seed, path)
-// through HashRng(seed, path, 0, kVplStream), with its draws in a fixed order: pick, position
-// (2), direction (2), then per hit the bounce direction (2) and roulette (1).
+// One light path of instant radiosity (docs/design/methods.md; shared C++/GLSL source,
+// vpl_generator.h is the generation): a light picked in proportion to its power, a point and a
+// direction on it, then a VPL at every diffuse surface the path reaches, continued by
+// cosine-weighted bounces with Russian roulette on the albedo after min_bounces. The path is a pure
+// function of (seed, path) through HashRng(seed, path, 0, kVplStream), with its draws in a fixed
+// order: pick, position (2), direction (2), then per hit the bounce direction (2) and roulette (1).
 //
 // Hooks, besides the scene's, the lights' and the ray queries (core/pt/trace_path.h lists those):
 //   VPL_CTX_PARAM / VPL_CTX       where the VPLs go

@@ -1,4 +1,4 @@
-// A virtual point light (instant radiosity, Keller 1997; METHODS.md section 1): a point on a
+// A virtual point light (instant radiosity, Keller 1997; docs/design/methods.md): a point on a
 // diffuse surface that re-emits the light it received, with a cosine lobe about its normal. It
 // emits intensity * max(0, n . w) in direction w (W/sr per RGB channel). Shared C++/GLSL source.
 #ifndef SST_CORE_VPL_VPL_H

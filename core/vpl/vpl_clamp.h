@@ -1,9 +1,9 @@
-// The VPL singularity clamp (METHODS.md §1): a VPL's 1/d^2 is bounded by 1/c^2, c = fraction * D.
-// D is the diagonal of the VPLs' bounding box, the extent of what is lit, not the scene's: an
-// interior with a large unlit ground plane or sky dome around it has a scene diagonal many times
-// its room's, and a clamp derived from that would darken every corner (METHODS.md §0). The
-// scene's diagonal is used only when the VPLs span no extent (one VPL, or all at one point),
-// where a VPL-derived D would be 0 and the clamp would vanish.
+// The VPL singularity clamp (docs/design/methods.md): a VPL's 1/d^2 is bounded by 1/c^2 with
+// c = fraction * D. D is the diagonal of the VPLs' bounding box, the extent of what is lit, not the
+// scene's: an interior with a large unlit ground plane or sky dome around it has a scene diagonal
+// many times its room's, and a clamp derived from that would darken every corner. The scene's
+// diagonal is used only when the VPLs span no extent (one VPL, or all at one point), where a
+// VPL-derived D would be 0 and the clamp would vanish.
 #pragma once
 #include "core/math/math.h"
 #include "core/scene/scene.h"

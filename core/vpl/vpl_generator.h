@@ -1,4 +1,4 @@
-// Instant-radiosity VPL generation (Keller 1997; METHODS.md §1): light paths leave the lights
+// Instant-radiosity VPL generation (Keller 1997; docs/design/methods.md): light paths leave the lights
 // (LightSampler::sample_emission) and deposit a VPL at every diffuse surface they hit, with
 // intensity = throughput * albedo / pi, then bounce on, cosine-weighted. Parameters: VplParams.
 //

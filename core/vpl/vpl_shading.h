@@ -1,4 +1,4 @@
-// The light one VPL sends to a shading point x (METHODS.md section 1), without visibility:
+// The light one VPL sends to a shading point x (docs/design/methods.md), without visibility:
 //   f(x, wi, wo) * max(0, n_x . wi) * I * max(0, n_j . (-wi)) / max(d^2, c^2)
 // wi = unit direction from x to the VPL, d = distance, c = the singularity clamp distance
 // (vpl_clamp.h). The clamp bounds the 1/d^2 spike of a VPL right next to x, at the price of

@@ -49,8 +49,8 @@ PathTraceTexel empty_texel() {
 
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
-  // One local copy of the view (its name too) keeps glslang's precise propagation small (README,
-  // "One source for both backends").
+  // One local copy of the view (its name too) keeps glslang's precise propagation small
+  // (docs/design/one-source.md, the glslang pitfall).
   ViewParams pixel_view = params.view;
   if (xy.x >= pixel_view.width || xy.y >= pixel_view.height) return;
   uint pixel = xy.y * pixel_view.width + xy.x;

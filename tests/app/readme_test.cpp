@@ -1,6 +1,6 @@
-// README.md's section on methods and parameters is generated (sst-render --list-methods
+// docs/methods.md's section on methods and parameters is generated (sst-render --list-methods
 // --markdown, from the registry's descriptions and the visit() help strings); this fails when
-// the README no longer holds exactly what the program prints, and says how to regenerate it.
+// the page no longer holds exactly what the program prints, and says how to regenerate it.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -28,7 +28,7 @@ std::string first_difference(const std::string& a, const std::string& b) {
     if (!ga) la = "(end of section)";
     if (!gb) lb = "(end of section)";
     if (la != lb || !ga || !gb)
-      return "line " + std::to_string(line) + " of the section:\n  README:    " + la + "\n  generated: " + lb;
+      return "line " + std::to_string(line) + " of the section:\n  docs:      " + la + "\n  generated: " + lb;
   }
 }
 
@@ -42,16 +42,16 @@ TEST(Readme, MethodSectionIsGenerated) {
   ASSERT_EQ(begin.rfind("<!-- methods:", 0), 0u) << generated;
   ASSERT_EQ(end, "<!-- end methods -->\n") << generated;
 
-  std::string readme_path = std::string(SST_SOURCE_DIR) + "/README.md";
-  std::string readme = read_text(readme_path);
+  std::string doc_path = std::string(SST_SOURCE_DIR) + "/docs/methods.md";
+  std::string doc = read_text(doc_path);
   std::string regenerate = "regenerate it with: scripts/update_readme_methods.sh build/sst-render";
-  size_t from = readme.find("\n" + begin);
-  size_t to = from == std::string::npos ? from : readme.find("\n" + end, from);
-  ASSERT_NE(to, std::string::npos) << readme_path << " has no section from '" << begin.substr(0, begin.size() - 1)
+  size_t from = doc.find("\n" + begin);
+  size_t to = from == std::string::npos ? from : doc.find("\n" + end, from);
+  ASSERT_NE(to, std::string::npos) << doc_path << " has no section from '" << begin.substr(0, begin.size() - 1)
                                    << "' to '" << end.substr(0, end.size() - 1) << "'; add the two lines, then "
                                    << regenerate;
-  std::string section = readme.substr(from + 1, to + end.size() - from);
-  EXPECT_TRUE(section == generated) << readme_path << ": the methods section differs from `sst-render --list-methods "
+  std::string section = doc.substr(from + 1, to + end.size() - from);
+  EXPECT_TRUE(section == generated) << doc_path << ": the methods section differs from `sst-render --list-methods "
                                     << "--markdown`, at " << first_difference(section, generated) << "\n"
                                     << regenerate;
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Light samplers side by side on scenes with many lights, direct light only (pt, max_bounces 0,
-# diffuse-only), as tests/benchmarks/README.md reports them: for each scene NAME (found as
+# diffuse-only), as docs/performance.md reports them: for each scene NAME (found as
 # SCENES/NAME/NAME.gltf, e.g. written by scenes/tools/make_many_lights.py), a reference at
 # REF_SPP, its emitters-only mask (sst-render --emitters-only), then SEEDS renders at SPP
 # for each sampler configuration, compared with the reference by `sst-eval compare --mask`: MSE

@@ -1,6 +1,7 @@
 // GI-1.0's building blocks on the GPU (core/gi10/gi10_math.h compiled as GLSL, through
 // gpu/shaders/gi10_math_test.comp) against the same source compiled as C++, on the same random
-// inputs (GI1.md §9.1: "CPU = GPU" means identical integers and floats within a few ulps): texel
+// inputs ("CPU = GPU" means identical integers and floats within a few ulps; docs/design/gi10.md,
+// tests): texel
 // indices, cell keys and offsets, hashes, fixed-point words and jitters bit for bit; the map's
 // directions and uv, the frame, SH, hysteresis and the cell update within 4 ulps or 2^-24 absolute
 // at unit scale (measured on lavapipe: 0 ulps everywhere, printed by the test).

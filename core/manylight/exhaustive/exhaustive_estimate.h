@@ -1,6 +1,6 @@
 // `exhaustive`, the estimate at one shading point (shared C++/GLSL source): every VPL with its
 // shadow ray, summed in VPL order. Deterministic given the shading point; the VPL ground truth
-// the unbiased samplers converge to (METHODS.md section 3).
+// the unbiased samplers converge to (docs/design/methods.md).
 #ifndef SST_CORE_MANYLIGHT_EXHAUSTIVE_EXHAUSTIVE_ESTIMATE_H
 #define SST_CORE_MANYLIGHT_EXHAUSTIVE_EXHAUSTIVE_ESTIMATE_H
 #include "core/manylight/estimator.h"

@@ -1,5 +1,5 @@
 // `exhaustive`: every VPL, each with its shadow ray (exhaustive_estimate.h). Deterministic given
-// the shading point; the VPL ground truth the unbiased samplers converge to (METHODS.md §3).
+// the shading point; the VPL ground truth the unbiased samplers converge to (docs/design/methods.md).
 #pragma once
 #include "core/manylight/exhaustive/exhaustive_estimate.h"
 #include "core/manylight/indirect_sampler.h"

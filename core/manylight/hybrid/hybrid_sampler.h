@@ -1,5 +1,5 @@
 // `hybrid`: shallow light cuts over a stochastic substitute tree (the hybrid thesis, ch. 5;
-// METHODS.md §3). A perfect light tree with SST substitutes. Per k x k block a shallow cut of n
+// docs/design/methods.md). A perfect light tree with SST substitutes. Per k x k block a shallow cut of n
 // nodes is built at the block centre's G-buffer point by splitting the node of largest expected
 // contribution lum(I) G_avg / d^2. Each pixel blends the four nearest blocks' cuts index by
 // index (Algorithm 1): for cut index i it picks one of the four cuts with probability

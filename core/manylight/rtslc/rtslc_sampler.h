@@ -1,4 +1,4 @@
-// `rtslc`: Real-Time Stochastic Lightcuts (Lin & Yuksel 2020; METHODS.md §3). A perfect light
+// `rtslc`: Real-Time Stochastic Lightcuts (Lin & Yuksel 2020; docs/design/methods.md). A perfect light
 // tree; per k x k pixel block a cut of M nodes built at a random pivot pixel; every pixel
 // traverses once from each cut node to a leaf (stochastic lightcuts) and sums the M one-VPL
 // estimates, each divided by its traversal probability. Unbiased (without interleaving, per

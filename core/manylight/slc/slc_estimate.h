@@ -1,4 +1,4 @@
-// `slc`, stochastic lightcuts with one sample per cut (Yuksel 2019; METHODS.md section 3), the
+// `slc`, stochastic lightcuts with one sample per cut (Yuksel 2019; docs/design/methods.md), the
 // estimate at one shading point (shared C++/GLSL source; slc_sampler.h is the method). Walks the
 // tree from the root to a leaf with Yuksel's child weights (core/lights/slc_weights.h, with the
 // luminance of each node's summed VPL intensity) and shades the leaf's VPL divided by the walk's

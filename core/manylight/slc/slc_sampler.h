@@ -1,4 +1,4 @@
-// `slc`: stochastic lightcuts with one sample per cut (Yuksel 2019; METHODS.md §3). Walks the
+// `slc`: stochastic lightcuts with one sample per cut (Yuksel 2019; docs/design/methods.md). Walks the
 // light tree from the root to a leaf, choosing child i with probability w_i / (w_1 + w_2),
 //   w_i = lum(I_i) * cosbound_i / dmin_i^2,
 // cosbound = upper bound of the cosine at x (shading normal) over the child's box, dmin = the

@@ -1,4 +1,4 @@
-// `sst`: stochastic substitute trees (Tatzgern et al. 2020, §4; METHODS.md §3). Biased by design.
+// `sst`: stochastic substitute trees (Tatzgern et al. 2020, §4; docs/design/methods.md). Biased by design.
 // The estimate is sst_estimate.h's (both backends); this is the method and its parameters.
 //
 // Per indirect sample:

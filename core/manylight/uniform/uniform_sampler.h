@@ -1,5 +1,5 @@
 // `uniform`: one VPL drawn uniformly, weighted by the VPL count (uniform_estimate.h). The baseline
-// every importance sampler must beat (METHODS.md §3).
+// every importance sampler must beat (docs/design/methods.md).
 #pragma once
 #include "core/manylight/indirect_sampler.h"
 #include "core/manylight/uniform/uniform_estimate.h"

@@ -1,6 +1,6 @@
-// GI-1.0's building blocks (core/gi10/gi10_math.h) against the specification (GI1.md §3.3-3.7,
-// §6.1-6.2, S12, tests T1, T2, T3, T5, T6, T8 of §9.1, §9.4) and its golden values (Appendix A,
-// computed independently by /work/shared/gi1/*.py and hash_golden.c). Fixed seeds throughout.
+// GI-1.0's building blocks (core/gi10/gi10_math.h) against their specification and golden values
+// (docs/design/gi10.md: tests T1, T2, T3, T5, T6 and T8, and Appendix A, whose values were computed
+// independently of sst by Python and C ports of the formulas). Fixed seeds throughout.
 #include "core/gi10/gi10_math.h"
 
 #include <gtest/gtest.h>
@@ -153,7 +153,7 @@ TEST(Gi10Frame, OrthonormalAndRightHanded) {
     ASSERT_NEAR(glm::dot(f.b2, n), 0.0f, 1e-6f);
     ASSERT_LE(max_abs_diff(glm::cross(f.b1, f.b2), n), 1e-6);  // right-handed
   }
-  // Capsaicin's frame of +z (§3.3): b1 = (0, -1, 0), b2 = n x b1 = (1, 0, 0).
+  // Capsaicin's frame of +z: b1 = (0, -1, 0), b2 = n x b1 = (1, 0, 0).
   GiFrame z = gi_frame(vec3(0, 0, 1));
   EXPECT_EQ(z.b1, vec3(0, -1, 0));
   EXPECT_EQ(z.b2, vec3(1, 0, 0));
@@ -173,7 +173,7 @@ TEST(Gi10Frame, TexelDirectionsRoundTripInWorldSpace) {
   }
 }
 
-// ---- T2 and §9.4: L2 spherical harmonics --------------------------------------------------------
+// ---- T2: L2 spherical harmonics ------------------------------------------------------------------
 
 // Radiance L(local direction) projected over the 64 texel centres of a probe with normal +z
 // (frame of gi_frame), then the clamped-cosine irradiance at normal m.
@@ -226,7 +226,8 @@ void sphere_quadrature(F f) {
   }
 }
 
-// The real SH of sh_check.py (double-precision constants, Capsaicin's signs and order).
+// The real SH basis with double-precision constants (Capsaicin's signs and order), as the
+// independent port that computed Appendix A.2 has it.
 TEST(Gi10Sh, BasisMatchesTheReferenceTable) {
   std::mt19937 rng(343);
   for (int i = 0; i < 10000; ++i) {
@@ -321,7 +322,7 @@ TEST(Gi10Hysteresis, MatchesAppendixA4) {
     v = (1.0f - a) * 1.0f + a * v;
     EXPECT_NEAR(v, want, 1e-4f);
   }
-  // Steady-state means for i.i.d. inputs of true mean 1 (hyst.py: 0.401 and 0.995).
+  // Steady-state means for i.i.d. inputs of true mean 1 (Appendix A.4: 0.401 and 0.995).
   std::mt19937 rng(505);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   std::normal_distribution<float> gauss(1.0f, 0.3f);
@@ -394,7 +395,7 @@ TEST(Gi10CellAddress, DirectionBins) {
   GiCellAddress a =
       gi_cell_address(vec3(0.0f), vec3(1.0f, 2.0f, 3.0f), vec3(0.0f, 0.0f, 1.0f), 1.0f, 0.05f, 0.1f, -10, false);
   EXPECT_EQ(a.key.dir, uvec3(2u, 2u, 4u));
-  // Unit vectors give 74 distinct codes (dirbins.py).
+  // Unit vectors give 74 distinct codes.
   std::mt19937 rng(606);
   std::set<uint> codes;
   for (int i = 0; i < 2000000; ++i) {
@@ -557,7 +558,7 @@ TEST(Gi10CellUpdate, CountsStayIntegers) {
   }
 }
 
-// ---- §3.7: order-independent fixed-point sums ------------------------------------------------------
+// ---- order-independent fixed-point sums -----------------------------------------------------------
 
 double exact_value(uvec2 s) { return double(s.y) * 256.0 + double(s.x) * std::ldexp(1.0, -24); }
 

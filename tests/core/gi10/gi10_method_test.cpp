@@ -1,4 +1,4 @@
-// gi10 end to end on the CPU: the analytic sphere of GI1.md §9.2 (E1) with both SH weights,
+// gi10 end to end on the CPU: the analytic sphere (test E1 of docs/design/gi10.md) with both SH weights,
 // determinism over thread counts, feedback adding bounces, and parameter errors.
 #include <gtest/gtest.h>
 
@@ -39,7 +39,7 @@ const Image& layer(const RenderResult& r, const std::string& name) {
 TEST(Gi10Method, TheLitSphereGetsTheSHIrradianceOfItsOneBounceRadiance) {
   // Every cache point of the sphere sees exactly L1 = rho I / (pi R^2): one light, cos 1, no
   // occluder. So every probe texel holds L1, and the irradiance is the SH quadrature's
-  // 1.02104 pi L1 = 1.02104 rho I / R^2 at every pixel, without noise (GI1.md §9.2 E1; the tilt
+  // 1.02104 pi L1 = 1.02104 rho I / R^2 at every pixel, without noise (test E1; the tilt
   // between a pixel and its probes is < 2 degrees at 256 x 256, < 0.05% of E).
   const float rho = 0.5f, radius = 2.0f, intensity = 8.0f;
   RenderResult r = render_gi10(lit_sphere(rho, radius, intensity), {{"feedback", false}, {"cache_warmup_frames", 16}}, 256, 256);
@@ -59,7 +59,7 @@ TEST(Gi10Method, TheLitSphereGetsTheSHIrradianceOfItsOneBounceRadiance) {
 }
 
 TEST(Gi10Method, CapsaicinsSHWeightScalesTheIrradianceByFourOverPi) {
-  // 1/8 instead of 2 pi / 64 per texel (GI1.md B3): everything downstream of the projection is
+  // 1/8 instead of 2 pi / 64 per texel (B3 of docs/design/gi10.md): everything downstream of the projection is
   // linear in it, or scale-free (the denoiser's luminance ratios), so every pixel scales by 4/pi.
   Scene scene = lit_sphere(0.5f, 2.0f, 8.0f);
   nlohmann::json p = {{"feedback", false}, {"cache_warmup_frames", 8}};

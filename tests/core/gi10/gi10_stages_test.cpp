@@ -1,5 +1,5 @@
-// Single stages of gi10_stages.h on the CPU (GI1.md §9.1): the hash grid's invariants under forced
-// collisions (T7) and the guiding's ray counts against its weights (T4).
+// Single stages of gi10_stages.h on the CPU (docs/design/gi10.md, tests): the hash grid's
+// invariants under forced collisions (T7) and the guiding's ray counts against its weights (T4).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -86,7 +86,7 @@ TEST(Gi10HashGrid, ATileLivesFortyNineUntouchedFramesAndIsFreedAtFifty) {
 }
 
 TEST(Gi10HashGrid, AKeyBehindAFreedSlotIsNotDuplicated) {
-  // GI1.md B6: A in slot 0, B in slot 1; A is freed; inserting B again must find slot 1 (Capsaicin
+  // B6 (docs/design/gi10.md): A in slot 0, B in slot 1; A is freed; inserting B again must find slot 1 (Capsaicin
   // would claim the hole and give B a second tile with empty history).
   OneBucket t;
   uint32_t a = t.insert(key(1)), b = t.insert(key(2));

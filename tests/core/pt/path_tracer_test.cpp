@@ -1,4 +1,4 @@
-// The path tracer against scenes with known radiance (DESIGN.md test layer 2).
+// The path tracer against analytic scenes whose radiance is known in closed form.
 #include "core/pt/path_tracer.h"
 
 #include <gtest/gtest.h>

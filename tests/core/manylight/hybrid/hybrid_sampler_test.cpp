@@ -78,7 +78,7 @@ TEST(HybridSampler, MeanImageCloseToExhaustive) {
 }
 
 TEST(HybridSampler, VisitsFewerNodesPerTraversalThanRtslc) {
-  // METHODS.md §3 / thesis Fig. 7.2: shallow cuts plus substitutes stop earlier than RTSLC's
+  // The hybrid thesis, Fig. 7.2: shallow cuts plus substitutes stop earlier than RTSLC's
   // cut-to-leaf walks. Both do cut_size = 8 traversals per sample, 8x8 blocks, 4096 VPLs.
   Scene scene = load_default_scene();
   nlohmann::json p = {{"vpls", 4096}, {"block_size", 8}, {"cut_size", 8}};

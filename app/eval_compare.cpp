@@ -1,10 +1,12 @@
 #include "app/eval_compare.h"
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "core/image/image.h"
+#include "core/metrics/flip.h"
 #include "core/metrics/metrics.h"
 #include "core/metrics/same_shape.h"
 #include "core/util/error.h"
@@ -32,7 +34,40 @@ ImageMetrics metrics_of(const Input& test, const Input& reference) {
   return compare_images(linear_of(test), linear_of(reference), false);
 }
 
-void print_table(const CompareArgs& args, const ImageMetrics& m, const MaskedErrors* masked) {
+// LDR- and HDR-FLIP (core/metrics/flip.h) of RGB inputs, NaN otherwise. HDR-FLIP needs HDR: a
+// pair of display images (PNGs) has LDR-FLIP only, as the FLIP tool reports them.
+struct Flip {
+  FlipResult ldr, hdr;
+};
+
+Flip flip_of(const CompareArgs& args, const Input& test, const Input& reference) {
+  Flip f;
+  f.ldr.mean = f.hdr.mean = NAN;
+  if (test.values.channels != 3) return f;
+  FlipOptions options;
+  options.keep_map = !args.flip_map.empty();
+  const Image t = linear_of(test), r = linear_of(reference);
+  f.ldr = flip_ldr(t, r, options);
+  if (!(test.display && reference.display)) {
+    options.keep_map = !args.flip_hdr_map.empty();
+    f.hdr = flip_hdr(t, r, options);
+  }
+  return f;
+}
+
+// An EXR holds the map's values (grey); any other format the inferno colour map of them.
+void write_flip_map(const std::string& path, const FlipResult& r, const char* which) {
+  if (r.map.data.empty()) throw Error(std::string("no ") + which + " map for " + path + ": it needs RGB" +
+                                      (std::string(which) == "HDR-FLIP" ? " HDR inputs" : " inputs"));
+  const bool exr = path.size() >= 4 && path.compare(path.size() - 4, 4, ".exr") == 0;
+  if (!exr) return write_image(path, flip_heatmap(r.map));
+  Image grey(r.map.width, r.map.height, 3);
+  for (size_t p = 0; p < r.map.pixel_count(); ++p)
+    for (int c = 0; c < 3; ++c) grey.data[p * 3 + c] = r.map.data[p];
+  write_image(path, grey);
+}
+
+void print_table(const CompareArgs& args, const ImageMetrics& m, const MaskedErrors* masked, const Flip& flip) {
   std::printf("test       %s%s\n", args.test.c_str(),
               args.layer.empty() ? "" : (" [" + args.layer + "]").c_str());
   std::printf("reference  %s%s\n", args.reference.c_str(),
@@ -43,6 +78,15 @@ void print_table(const CompareArgs& args, const ImageMetrics& m, const MaskedErr
   std::printf("psnr       %.4g dB\n", m.psnr);
   std::printf("ssim       %.6f\n", m.ssim);
   std::printf("mae        %.6g\n", m.mae);
+  if (std::isfinite(flip.ldr.mean))
+    std::printf("flip_ldr   %.6f\n", flip.ldr.mean);
+  else
+    std::printf("flip_ldr   -  (FLIP needs RGB inputs)\n");
+  if (std::isfinite(flip.hdr.mean))
+    std::printf("flip_hdr   %.6f (%d exposures, %.3g to %.3g)\n", flip.hdr.mean, flip.hdr.exposures,
+                flip.hdr.start_exposure, flip.hdr.stop_exposure);
+  else
+    std::printf("flip_hdr   -  (HDR-FLIP needs linear RGB inputs)\n");
   std::printf("mean_test  %10.6g %10.6g %10.6g\n", m.mean_test.x, m.mean_test.y, m.mean_test.z);
   std::printf("mean_ref   %10.6g %10.6g %10.6g\n", m.mean_reference.x, m.mean_reference.y,
               m.mean_reference.z);
@@ -54,8 +98,9 @@ void print_table(const CompareArgs& args, const ImageMetrics& m, const MaskedErr
                 masked->rmse, masked->rel_mse, masked->mae);
 }
 
-void print_json(const CompareArgs& args, const ImageMetrics& m, const MaskedErrors* masked) {
+void print_json(const CompareArgs& args, const ImageMetrics& m, const MaskedErrors* masked, const Flip& flip) {
   nlohmann::json out = to_json(m);
+  out.update(flip_json(flip.ldr.mean, flip.hdr.mean));
   if (masked)
     out["masked"] = {{"mask", args.mask}, {"pixels", masked->pixels}, {"rmse", masked->rmse},
                      {"rel_mse", masked->rel_mse}, {"mae", masked->mae}};
@@ -82,6 +127,10 @@ CLI::App* add_compare_command(CLI::App& app, CompareArgs& args) {
   cmd->add_option("--mask", args.mask,
                   "Also report rmse, rel_mse and mae over the pixels where this image is 0 (e.g. a render of "
                   "the emitters alone: the pixels no visible emitter touches)");
+  cmd->add_option("--flip-map", args.flip_map,
+                  "Write the LDR-FLIP error map (.exr: its values, in every channel; other formats: the inferno colour "
+                  "map, 0 black .. 1 pale yellow)");
+  cmd->add_option("--flip-hdr-map", args.flip_hdr_map, "Write the HDR-FLIP error map, as --flip-map");
   return cmd;
 }
 
@@ -98,10 +147,13 @@ int run_compare(const CompareArgs& args) {
   const MaskedErrors* masked_or_null = args.mask.empty() ? nullptr : &masked;
   if (!args.heatmap.empty())
     write_image(args.heatmap, error_heatmap(linear_of(test), linear_of(reference), args.heatmap_max));
+  const Flip flip = flip_of(args, test, reference);
+  if (!args.flip_map.empty()) write_flip_map(args.flip_map, flip.ldr, "LDR-FLIP");
+  if (!args.flip_hdr_map.empty()) write_flip_map(args.flip_hdr_map, flip.hdr, "HDR-FLIP");
   if (args.json)
-    print_json(args, m, masked_or_null);
+    print_json(args, m, masked_or_null, flip);
   else
-    print_table(args, m, masked_or_null);
+    print_table(args, m, masked_or_null, flip);
   return 0;
 }
 

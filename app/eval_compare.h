@@ -16,6 +16,8 @@ struct CompareArgs {
   float heatmap_max = 1.0f;  // relative error shown as the brightest colour
   std::string layer;         // compare this EXR layer of both files instead of their RGB
   std::string mask;          // also report the errors where this image is 0 (empty: none)
+  std::string flip_map;      // where to write the LDR-FLIP error map (empty: none)
+  std::string flip_hdr_map;  // where to write the HDR-FLIP error map (empty: none)
 };
 
 // Registers the subcommand on app, filling args when it is parsed.

@@ -184,7 +184,7 @@ int run_check_command(const CheckArgs& a) {
   std::fputs(medians.table.c_str(), stdout);
   bool passed = medians.passed;
   int failures = medians.failures;
-  nlohmann::json record = {{"medians", {{"passed", medians.passed}, {"failures", medians.failures}}}};
+  nlohmann::json record = {{"medians", {{"passed", medians.passed}, {"failures", medians.failures}, {"flip", medians.flip}}}};
   if (statistics.is_null()) {
     std::printf("\nNo %s: the distribution tests need a baseline made with --update.\n", statistics_path.string().c_str());
   } else {

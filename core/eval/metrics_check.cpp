@@ -74,6 +74,14 @@ CheckOutcome check_against_baseline(const nlohmann::json& fresh, const nlohmann:
       << fmt(rmse.tolerance) << " | " << rmse.status << " | " << times << " |\n";
     t << "| " << name << " | 1-ssim | " << fmt(dssim_b) << " | " << fmt(dssim_f) << " | " << change(dssim_b, dssim_f)
       << " | " << fmt(ssim.tolerance) << " | " << ssim.status << " | |\n";
+    for (const char* metric : {"flip_ldr", "flip_hdr"}) {
+      const std::string key = std::string(metric) + "_median";
+      const double flip_b = number(b, key.c_str()), flip_f = number(f, key.c_str());
+      t << "| " << name << " | " << metric << " | " << fmt(flip_b) << " | " << fmt(flip_f) << " | "
+        << change(flip_b, flip_f) << " | - | recorded | |\n";
+      out.flip[name][metric] = {{"baseline", std::isfinite(flip_b) ? nlohmann::json(flip_b) : nlohmann::json(nullptr)},
+                                {"fresh", std::isfinite(flip_f) ? nlohmann::json(flip_f) : nlohmann::json(nullptr)}};
+    }
     if (rmse.status == "WORSE") fail();
     if (ssim.status == "WORSE") fail();
     if (nonfinite[name] > 0) {

@@ -312,7 +312,15 @@ double masked_mean(const std::vector<const json*>& runs, const char* key, bool s
   return mean_finite(values);
 }
 
-json group_row(const Index& index, const json& g, const std::vector<std::string>& axes, bool masked) {
+// Whether any of the runs has FLIP (results recorded before it have none): its columns are shown
+// only then.
+bool has_flip(const std::vector<const json*>& runs) {
+  for (const json* r : runs)
+    if (member(member(*r, "metrics"), "flip_ldr").is_number()) return true;
+  return false;
+}
+
+json group_row(const Index& index, const json& g, const std::vector<std::string>& axes, bool masked, bool flip) {
   const std::vector<const json*> runs = index.runs_of(g);
   const bool pareto = member(g, "pareto") == true;
   double ssim = number(g, "ssim_mean");
@@ -330,8 +338,11 @@ json group_row(const Index& index, const json& g, const std::vector<std::string>
     cells.push_back(cell(fmt(masked_mean(runs, "rmse", true))));
     cells.push_back(cell(fmt(masked_mean(runs, "rel_mse", false))));
   }
-  for (json c : {cell(fmt(mean_finite(run_values(runs, "metrics", "psnr")))), cell(fmt(ssim)),
-                 cell(fmt(mean_finite(run_values(runs, nullptr, "efficiency")))),
+  cells.push_back(cell(fmt(mean_finite(run_values(runs, "metrics", "psnr")))));
+  cells.push_back(cell(fmt(ssim)));
+  if (flip)
+    for (const char* key : {"flip_ldr", "flip_hdr"}) cells.push_back(cell(fmt(mean_finite(run_values(runs, "metrics", key)))));
+  for (json c : {cell(fmt(mean_finite(run_values(runs, nullptr, "efficiency")))),
                  cell(fmt(mean_finite(run_values(runs, nullptr, "ssim_gain_pct_per_ms")))),
                  cell(fmt(number(g, "bias2"))), cell(fmt(number(g, "variance"))), cell(std::to_string(runs.size()))})
     cells.push_back(std::move(c));
@@ -353,14 +364,22 @@ json group_table(const Index& index, const Scene& scene) {
     head.push_back(head_cell("MSE masked", "pixels no visible emitter touches"));
     head.push_back(head_cell("rel MSE masked", "pixels no visible emitter touches"));
   }
-  for (json c : {head_cell("PSNR dB"), head_cell("SSIM"), head_cell("efficiency 1/s"), head_cell("SSIM gain %/ms"),
-                 head_cell("bias\u00b2"), head_cell("variance"), head_cell("seeds")})
+  bool flip = false;
+  for (const json* g : scene.groups) flip = flip || has_flip(index.runs_of(*g));
+  head.push_back(head_cell("PSNR dB"));
+  head.push_back(head_cell("SSIM"));
+  if (flip) {
+    head.push_back(head_cell("LDR-FLIP", "mean over pixels, 67 ppd"));
+    head.push_back(head_cell("HDR-FLIP", "max over exposures"));
+  }
+  for (json c : {head_cell("efficiency 1/s"), head_cell("SSIM gain %/ms"), head_cell("bias\u00b2"), head_cell("variance"),
+                 head_cell("seeds")})
     head.push_back(std::move(c));
   json rows = json::array();
-  for (const json* g : scene.groups) rows.push_back(group_row(index, *g, axes, masked));
+  for (const json* g : scene.groups) rows.push_back(group_row(index, *g, axes, masked, flip));
   return table("groups", head, rows,
                "\u2605 on the RMSE-vs-time Pareto front of this scene. Time, RMSE, SSIM, bias\u00b2 and variance are "
-               "over the group's seeds; rel MSE, PSNR, efficiency and SSIM gain are means over its runs.");
+               "over the group's seeds; rel MSE, PSNR, FLIP, efficiency and SSIM gain are means over its runs.");
 }
 
 // Sequences: per group (its seed-0 run), the medians over measured frames of the raw frames'
@@ -384,7 +403,7 @@ json sequence_table(const Index& index, const Scene& scene) {
   return table("groups", head, rows,
                "Sequences: medians over the measured frames, each against its own reference; raw = the method's "
                "frames before temporal reuse and denoising, out = the output. Flicker: RMS of the frame-to-frame "
-               "change minus the reference's (core/eval/README.md).");
+               "change minus the reference's (docs/sst-eval.md).");
 }
 
 // ---- plots
@@ -524,8 +543,9 @@ json run_card(const Index& index, const json& group, const json& run) {
           {"sub",
            {span("run "), span(id, true),
             span(" (seed " + text_of(run, "seed") + "), RMSE " + fmt(number(member(run, "metrics"), "rmse")) +
-                 ", SSIM " + fmt(number(member(run, "metrics"), "ssim")) + ", " +
-                 fmt(number(member(run, "time_ms"), "median")) + " ms")}},
+                 ", SSIM " + fmt(number(member(run, "metrics"), "ssim")) +
+                 (has_flip({&run}) ? ", LDR-FLIP " + fmt(number(member(run, "metrics"), "flip_ldr")) : std::string()) +
+                 ", " + fmt(number(member(run, "time_ms"), "median")) + " ms")}},
           {"figures", figures}};
 }
 
@@ -559,15 +579,24 @@ json scene_section(const Index& index, const Scene& scene) {
 
 json runs_details(const Index& index) {
   const json& runs = member(*index.results, "runs");
+  std::vector<const json*> all;
+  for (const json& r : runs) all.push_back(&r);
+  const bool flip = has_flip(all);
   json rows = json::array();
-  for (const json& r : runs)
-    rows.push_back(row({code_cell(text_of(r, "id"), "id"), cell(text_of(r, "label"), "label"),
-                        cell(scene_title(text_of(r, "scene")), "label"), cell(text_of(r, "seed")),
-                        cell(text_of(r, "spp")), cell(fmt(number(member(r, "time_ms"), "median"))),
-                        cell(fmt(number(member(r, "metrics"), "rmse"))),
-                        cell(fmt(number(member(r, "metrics"), "ssim")))}));
+  for (const json& r : runs) {
+    json cells = {code_cell(text_of(r, "id"), "id"), cell(text_of(r, "label"), "label"),
+                  cell(scene_title(text_of(r, "scene")), "label"), cell(text_of(r, "seed")),
+                  cell(text_of(r, "spp")), cell(fmt(number(member(r, "time_ms"), "median"))),
+                  cell(fmt(number(member(r, "metrics"), "rmse"))),
+                  cell(fmt(number(member(r, "metrics"), "ssim")))};
+    if (flip)
+      for (const char* key : {"flip_ldr", "flip_hdr"}) cells.push_back(cell(fmt(number(member(r, "metrics"), key))));
+    rows.push_back(row(std::move(cells)));
+  }
   json head = json::array();
   for (const char* name : {"id", "label", "scene", "seed", "spp", "time ms", "RMSE", "SSIM"}) head.push_back(head_cell(name));
+  if (flip)
+    for (const char* name : {"LDR-FLIP", "HDR-FLIP"}) head.push_back(head_cell(name));
   return {{"summary", "All " + std::to_string(runs.size()) + " runs"}, {"table", table(nullptr, head, rows)}};
 }
 

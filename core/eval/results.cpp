@@ -100,15 +100,25 @@ void add_seed_statistics(nlohmann::json& group, const std::string& name, const s
   group[name + "_robust_std"] = finite_or_null(several ? 1.4826 * median(deviations) : NAN);
 }
 
+// A metric that runs recorded before it lack (FLIP): statistics over the runs that have it, and
+// nulls when none has.
+void add_optional_statistics(nlohmann::json& group, const std::string& name, std::vector<double> v) {
+  std::erase_if(v, [](double x) { return !std::isfinite(x); });
+  if (!v.empty()) return add_seed_statistics(group, name, v);
+  for (const char* suffix : {"_mean", "_std", "_median", "_robust_std"}) group[name + suffix] = nullptr;
+}
+
 nlohmann::json make_group(const std::string& name, const std::vector<const nlohmann::json*>& runs, const std::string& dir) {
   const nlohmann::json& first = *runs.front();
-  std::vector<double> times, rmse, ssim;
+  std::vector<double> times, rmse, ssim, flip_ldr, flip_hdr;
   nlohmann::json ids = nlohmann::json::array();
   for (const nlohmann::json* r : runs) {
     ids.push_back((*r)["id"]);
     times.push_back(median_time(*r));
     rmse.push_back(number((*r)["metrics"]["rmse"]));
     ssim.push_back(number((*r)["metrics"]["ssim"]));
+    flip_ldr.push_back(number(member((*r)["metrics"], "flip_ldr")));
+    flip_hdr.push_back(number(member((*r)["metrics"], "flip_hdr")));
   }
   size_t n = runs.size();
   nlohmann::json g = {{"group", name},           {"label", first["label"]},     {"scene", first["scene"]},
@@ -118,6 +128,8 @@ nlohmann::json make_group(const std::string& name, const std::vector<const nlohm
                       {"comparison_set", comparison_set(first)}};
   add_seed_statistics(g, "rmse", rmse);
   add_seed_statistics(g, "ssim", ssim);
+  add_optional_statistics(g, "flip_ldr", flip_ldr);
+  add_optional_statistics(g, "flip_hdr", flip_hdr);
   bool images_present = std::all_of(runs.begin(), runs.end(), [&](const nlohmann::json* r) {
     return fs::exists(fs::path(dir) / (*r)["images"]["exr"].get<std::string>()) &&
            fs::exists(fs::path(dir) / "references" / ((*r)["reference"].get<std::string>() + ".exr"));
@@ -204,7 +216,7 @@ std::string results_csv(const nlohmann::json& results) {
   out << "id,index,scene,label,method,variant,seed";
   for (const std::string& a : axis_names) out << "," << a;
   out << ",spp,time_budget_ms,time_ms_median,time_ms_min,time_ms_max,rmse,rel_mse,psnr,ssim,efficiency,"
-         "ssim_gain_pct_per_ms,reference\n";
+         "ssim_gain_pct_per_ms,reference,flip_ldr,flip_hdr\n";
   for (const nlohmann::json& r : results["runs"]) {
     out << csv_field(r["id"]) << "," << r["index"] << "," << csv_field(r["scene"]) << "," << csv_field(r["label"]) << ","
         << csv_field(r["method"]) << "," << csv_field(r["variant"]) << "," << r["seed"];
@@ -214,7 +226,7 @@ std::string results_csv(const nlohmann::json& results) {
         << r["time_ms"]["min"] << "," << r["time_ms"]["max"] << "," << csv_field(m["rmse"]) << ","
         << csv_field(m["rel_mse"]) << "," << csv_field(m["psnr"]) << "," << csv_field(m["ssim"]) << ","
         << csv_field(r["efficiency"]) << "," << csv_field(r["ssim_gain_pct_per_ms"]) << "," << csv_field(r["reference"])
-        << "\n";
+        << "," << csv_field(member(m, "flip_ldr")) << "," << csv_field(member(m, "flip_hdr")) << "\n";
   }
   return out.str();
 }

@@ -9,6 +9,7 @@
 #include "core/pipeline/method_registry.h"
 #include "core/image/video.h"
 #include "core/metrics/error_map.h"
+#include "core/metrics/flip.h"
 #include "core/metrics/metrics.h"
 #include "core/pipeline/render_record.h"
 #include "core/pipeline/sequence.h"
@@ -199,11 +200,15 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
           const FrameOutput& out = f.result.frame;
           const Image& raw = layer_or(out, "raw", out.color);
           ImageMetrics m = compare_images(out.color, *reference.image), m_raw = compare_images(raw, *reference.image);
+          // FLIP of the output only: the raw frames are a diagnosis, and HDR-FLIP costs a
+          // tone-mapped LDR-FLIP per exposure.
+          nlohmann::json frame_metrics = to_json(m);
+          frame_metrics.update(flip_metrics(out.color, *reference.image));
           tally.frames.push_back({{"index", f.index},
                                   {"time", f.time},
                                   {"frame_ms", frame_ms(f.result)},
                                   {"reference", reference.id},
-                                  {"metrics", to_json(m)},
+                                  {"metrics", frame_metrics},
                                   {"metrics_raw", to_json(m_raw)},
                                   {"stages", stage_statistics({f.result.timer})}});
           if (!tally.previous.data.empty()) {
@@ -352,6 +357,7 @@ nlohmann::json execute_run(Scene& scene, const RunSpec& run, const RunReference&
       {"scene_summary", scene_summary(scene, last.options.diffuse_only)},
       {"metrics", to_json(metrics)},
   });
+  record["metrics"].update(flip_metrics(measured, *reference.image));
   if (reference.mask) {
     const MaskedErrors e = masked_errors(measured, *reference.image, *reference.mask);
     record["metrics"]["masked"] = {{"pixels", e.pixels}, {"rmse", e.rmse}, {"rel_mse", e.rel_mse}, {"mae", e.mae}};

@@ -132,10 +132,11 @@ void report_progress(size_t done, size_t total, size_t rendered, size_t rendered
   double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
   double left = rendered > 0 ? elapsed / double(rendered) * double(rendered_total - rendered) : 0.0;
   const nlohmann::json& m = record["metrics"];
-  std::fprintf(stderr, "[%zu/%zu] %s: %d spp, frame %.1f ms, rmse %.4g, ssim %.4f | %s elapsed, ~%s left\n", done,
-               total, record["id"].get<std::string>().c_str(), record["spp"].get<int>(),
-               record["time_ms"]["median"].get<double>(), m["rmse"].is_number() ? m["rmse"].get<double>() : NAN,
-               m["ssim"].is_number() ? m["ssim"].get<double>() : NAN, duration(elapsed).c_str(), duration(left).c_str());
+  auto value = [&](const char* key) { return m.contains(key) && m[key].is_number() ? m[key].get<double>() : NAN; };
+  std::fprintf(stderr, "[%zu/%zu] %s: %d spp, frame %.1f ms, rmse %.4g, ssim %.4f, flip %.4f | %s elapsed, ~%s left\n",
+               done, total, record["id"].get<std::string>().c_str(), record["spp"].get<int>(),
+               record["time_ms"]["median"].get<double>(), value("rmse"), value("ssim"), value("flip_ldr"),
+               duration(elapsed).c_str(), duration(left).c_str());
 }
 
 }  // namespace

@@ -36,7 +36,7 @@ double group_mean(const nlohmann::json& group, const std::map<std::string, const
 }
 
 Row group_row(const nlohmann::json& g, const std::map<std::string, const nlohmann::json*>& runs, bool scenes,
-              const std::vector<std::string>& axes, const std::vector<std::string>& stages, bool masked) {
+              const std::vector<std::string>& axes, const std::vector<std::string>& stages, bool masked, bool flip) {
   Row row;
   if (scenes) row.push_back(g["scene"].get<std::string>());
   row.push_back(g["label"].get<std::string>());
@@ -67,6 +67,9 @@ Row group_row(const nlohmann::json& g, const std::map<std::string, const nlohman
     })));
   }
   row.push_back(fixed(number(g["ssim_mean"])));
+  if (flip)
+    for (const char* key : {"flip_ldr", "flip_hdr"})
+      row.push_back(fixed(group_mean(g, runs, [&](const nlohmann::json& r) { return number(member(member(r, "metrics"), key)); })));
   row.push_back(fixed(group_mean(g, runs, [](const nlohmann::json& r) { return number(r["ssim_gain_pct_per_ms"]); }), 3));
   row.push_back(g.value("pareto", false) ? "yes" : "");
   return row;
@@ -118,6 +121,9 @@ std::string format_table(const nlohmann::json& results, const std::string& forma
   // Masked columns when any run was measured against an emitter mask (reference "mask").
   bool masked = false;
   for (const nlohmann::json& r : results.at("runs")) masked = masked || (r.contains("metrics") && r["metrics"].contains("masked"));
+  // FLIP columns when any run has FLIP (results recorded before it have none).
+  bool flip = false;
+  for (const nlohmann::json& r : results.at("runs")) flip = flip || member(member(r, "metrics"), "flip_ldr").is_number();
   Row header;
   if (scenes) header.push_back("scene");
   header.push_back("method");  // the label: the method, or the variant's name (with the method if it is an axis)
@@ -131,9 +137,14 @@ std::string format_table(const nlohmann::json& results, const std::string& forma
     header.push_back("MSE masked");
     header.push_back("relMSE masked");
   }
-  for (const char* h : {"SSIM", "gain %SSIM/ms", "Pareto"}) header.push_back(h);
+  header.push_back("SSIM");
+  if (flip) {
+    header.push_back("LDR-FLIP");
+    header.push_back("HDR-FLIP");
+  }
+  for (const char* h : {"gain %SSIM/ms", "Pareto"}) header.push_back(h);
   std::vector<Row> rows;
-  for (const nlohmann::json& g : results["groups"]) rows.push_back(group_row(g, runs, scenes, axes, stages, masked));
+  for (const nlohmann::json& g : results["groups"]) rows.push_back(group_row(g, runs, scenes, axes, stages, masked, flip));
   return format == "markdown" ? markdown(header, rows) : csv(header, rows);
 }
 

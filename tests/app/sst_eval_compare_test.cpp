@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/image/image.h"
+#include "core/metrics/flip.h"
 #include "core/metrics/metrics.h"
 #include "tests/test_util.h"
 
@@ -76,6 +77,38 @@ TEST(SstEvalCompare, TableNamesEveryMetric) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   for (const char* word : {"rmse", "rel_mse", "psnr", "ssim", "mean_test", "mean_ref"})
     EXPECT_NE(r.output.find(word), std::string::npos) << word << " missing in\n" << r.output;
+}
+
+TEST(SstEvalCompare, FlipIsPrintedBesideTheOtherMetricsAndItsMapsWritten) {
+  const fs::path dir = sst::test::temp_dir();
+  const Pair p = write_pair(dir, ".exr");
+  const fs::path ldr_map = dir / "flip.png", hdr_map = dir / "flip_hdr.exr";
+  const auto r = eval("compare " + quoted(p.test) + " " + quoted(p.reference) + " --json --flip-map " + quoted(ldr_map) +
+                      " --flip-hdr-map " + quoted(hdr_map));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output);
+  const Image test = sst::read_image(p.test.string()), reference = sst::read_image(p.reference.string());
+  EXPECT_DOUBLE_EQ(j.at("flip_ldr").get<double>(), sst::flip_ldr(test, reference).mean);
+  EXPECT_DOUBLE_EQ(j.at("flip_hdr").get<double>(), sst::flip_hdr(test, reference).mean);
+  EXPECT_GT(j.at("flip_ldr").get<double>(), 0.0);
+  // The EXR holds the map's values: their mean is the reported one.
+  const Image map = sst::read_image(hdr_map.string());
+  double sum = 0.0;
+  for (size_t i = 0; i < map.pixel_count(); ++i) sum += map.data[i * 3];
+  EXPECT_NEAR(sum / double(map.pixel_count()), j.at("flip_hdr").get<double>(), 1e-6);
+  EXPECT_EQ(sst::read_image(ldr_map.string()).width, 24);
+  const auto table = eval("compare " + quoted(p.test) + " " + quoted(p.reference));
+  for (const char* word : {"flip_ldr", "flip_hdr"})
+    EXPECT_NE(table.output.find(word), std::string::npos) << word << " missing in\n" << table.output;
+  // Two PNGs are display images: LDR-FLIP only.
+  const Pair png = write_pair(dir, ".png");
+  const nlohmann::json pj =
+      nlohmann::json::parse(eval("compare " + quoted(png.test) + " " + quoted(png.reference) + " --json").output);
+  EXPECT_TRUE(pj.at("flip_ldr").is_number());
+  EXPECT_TRUE(pj.at("flip_hdr").is_null());
+  expect_one_error_line(eval("compare " + quoted(png.test) + " " + quoted(png.reference) + " --flip-hdr-map " +
+                             quoted(dir / "x.png")),
+                        "HDR-FLIP");
 }
 
 TEST(SstEvalCompare, MissingFileIsOneErrorLineNamingIt) {

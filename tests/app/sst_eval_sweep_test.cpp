@@ -127,7 +127,20 @@ TEST(SstEvalSweep, TablePrintsMarkdownAndCsv) {
   test::CommandResult md = eval("table " + (dir / "out").string() + " --stage sampling");
   ASSERT_EQ(md.exit_code, 0) << md.output;
   EXPECT_EQ(md.output.rfind("| method | spp | frame ms (median [min-max]) | sampling ms | RMSE |", 0), 0u) << md.output;
+  EXPECT_NE(md.output.find("| SSIM | LDR-FLIP | HDR-FLIP |"), std::string::npos) << md.output;
   EXPECT_EQ(std::count(md.output.begin(), md.output.end(), '\n'), 2 + 4);
+  // Every run records both FLIP means, the groups their statistics, the CSV its columns.
+  const json results = read_json_file((dir / "out/results.json").string());
+  for (const json& r : results["runs"])
+    for (const char* key : {"flip_ldr", "flip_hdr"}) {
+      ASSERT_TRUE(r["metrics"][key].is_number()) << key << " " << r["id"];
+      EXPECT_GT(r["metrics"][key].get<double>(), 0.0);
+      EXPECT_LE(r["metrics"][key].get<double>(), 1.0);
+    }
+  EXPECT_TRUE(results["groups"][0]["flip_hdr_median"].is_number());
+  std::ifstream csv_file(dir / "out/results.csv");
+  const std::string csv_text((std::istreambuf_iterator<char>(csv_file)), std::istreambuf_iterator<char>());
+  EXPECT_NE(csv_text.find(",reference,flip_ldr,flip_hdr\n"), std::string::npos) << csv_text;
   test::CommandResult csv = eval("table " + (dir / "out/results.json").string() + " --format csv");
   EXPECT_EQ(csv.output.rfind("method,spp,frame ms", 0), 0u) << csv.output;
   EXPECT_EQ(eval("table " + (dir / "out").string() + " --format xml").exit_code, 1);
@@ -193,6 +206,9 @@ TEST(SstEvalSweep, SequencesAreMeasuredFrameByFrameWithFlicker) {
     EXPECT_TRUE(run["flicker"].is_number()) << run.dump();
     EXPECT_TRUE(run["flicker_raw"].is_number());
     EXPECT_TRUE(run["metrics_raw"]["rmse"].is_number());
+    // FLIP per measured frame of the output, its median the run's.
+    EXPECT_TRUE(run["frames"][0]["metrics"]["flip_hdr"].is_number());
+    EXPECT_TRUE(run["metrics"]["flip_ldr"].is_number());
     // Temporal reuse makes the output steadier than the raw frames it comes from.
     EXPECT_LT(run["flicker"].get<double>(), run["flicker_raw"].get<double>()) << run["id"];
     EXPECT_TRUE(fs::exists(dir / "out" / "runs" / run["id"].get<std::string>() / "image.exr"));
@@ -205,6 +221,7 @@ TEST(SstEvalSweep, SequencesAreMeasuredFrameByFrameWithFlicker) {
   std::ifstream report(dir / "out" / "report.html");
   std::string html((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
   EXPECT_NE(html.find("flicker out"), std::string::npos);
+  EXPECT_NE(html.find("<th>HDR-FLIP"), std::string::npos);  // the groups' and the runs' columns
   EXPECT_NE(html.find("RMSE per frame"), std::string::npos);
 }
 

@@ -18,7 +18,7 @@ from skimage.metrics import structural_similarity
 
 
 def ssim(a, b):
-    """METHODS.md section 6: exactly the call the C++ implementation must reproduce."""
+    """sst's SSIM: exactly the call the C++ implementation (core/metrics/ssim.h) must reproduce."""
     return structural_similarity(a.astype(np.float64), b.astype(np.float64), gaussian_weights=True,
                                  sigma=1.5, use_sample_covariance=False, data_range=1, channel_axis=-1)
 

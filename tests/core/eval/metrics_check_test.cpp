@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "core/util/json_io.h"
+
 namespace sst {
 namespace {
 
@@ -52,6 +54,26 @@ TEST(MetricsCheck, SsimDropNonFiniteAndMissingGroupsFail) {
   CheckOutcome missing = check_against_baseline(empty, base);
   EXPECT_FALSE(missing.passed);
   EXPECT_NE(missing.table.find("missing"), std::string::npos);
+}
+
+// FLIP is recorded beside the gated metrics but never gates: a much worse FLIP passes, and the
+// committed baseline (made before FLIP, which it then shows as a dash) still loads and checks.
+TEST(MetricsCheck, FlipIsRecordedNeverGatedAndOldBaselinesLoad) {
+  json base = results(0.1, 0.01, 0.80), fresh = results(0.1, 0.01, 0.80);
+  base["groups"][0]["flip_ldr_median"] = 0.10;
+  fresh["groups"][0]["flip_ldr_median"] = 0.30;
+  fresh["groups"][0]["flip_hdr_median"] = 0.40;
+  CheckOutcome outcome = check_against_baseline(fresh, base);
+  EXPECT_TRUE(outcome.passed) << outcome.table;
+  EXPECT_NE(outcome.table.find("| slc | flip_ldr | 0.1 | 0.3 | +200.00% | - | recorded |"), std::string::npos) << outcome.table;
+  EXPECT_NE(outcome.table.find("| slc | flip_hdr | - | 0.4 | - | - | recorded |"), std::string::npos) << outcome.table;
+  EXPECT_EQ(outcome.flip["slc"]["flip_ldr"]["baseline"], 0.10);
+  EXPECT_TRUE(outcome.flip["slc"]["flip_hdr"]["baseline"].is_null());
+
+  const json committed = read_json_file(std::string(SST_SOURCE_DIR) + "/results/ci/results.json");
+  CheckOutcome same = check_against_baseline(committed, committed);
+  EXPECT_TRUE(same.passed) << same.table;
+  EXPECT_NE(same.table.find(" | flip_hdr | "), std::string::npos) << same.table;
 }
 
 }  // namespace

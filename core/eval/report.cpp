@@ -165,7 +165,7 @@ const json* representative_run(const Index& index, const json& group) {
   return best;
 }
 
-// ---- the pieces of the view model (keys in README.md). Every key a template reads is present,
+// ---- the pieces of the view model (keys in docs/sst-eval.md). Every key a template reads is present,
 // null when absent: Mustache looks a missing key up in the enclosing objects.
 
 json span(std::string text, bool code = false) { return {{"text", std::move(text)}, {"code", code}}; }

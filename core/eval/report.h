@@ -1,6 +1,6 @@
-// report.html: what a person reads after a sweep. Built from results.json alone (see README.md in
-// this folder), so a report can be regenerated from any results folder without rendering.
-// report_view() turns the results into a view model (JSON, keys in README.md) and
+// report.html: what a person reads after a sweep. Built from results.json alone (docs/sst-eval.md
+// describes it), so a report can be regenerated from any results folder without rendering.
+// report_view() turns the results into a view model (JSON, keys in docs/sst-eval.md) and
 // render_report() draws it with the templates of core/eval/report/, embedded in the binary.
 #pragma once
 #include <nlohmann/json.hpp>

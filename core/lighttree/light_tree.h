@@ -43,7 +43,7 @@ namespace sst {
 // A leaf holds nothing its VPL does not (make_leaf, substitute.h). With LightTreeParams::leaves =
 // made only the nodes below first_leaf are stored, and node() makes a leaf from its VPL when it
 // is read: 96 bytes a VPL instead of 192, for walks that gather the leaves' VPLs from wherever
-// they lie (tests/benchmarks/README.md has the measured cost).
+// they lie (docs/performance.md has the measured cost).
 struct LightTree {
   std::string kind;  // the builder: radix, perfect, agglomerative
   // [0, stored_nodes): every node, or only those below first_leaf (leaves = made). Builders:

@@ -15,7 +15,7 @@ namespace sst {
 enum class AlphaMode {
   Opaque,  // every hit counts
   Mask,    // a hit counts where alpha >= alpha_cutoff
-  Blend,   // rendered as Mask with cutoff 0.5: a cutout, not partial transparency (README, loader policy)
+  Blend,   // rendered as Mask with cutoff 0.5: a cutout, not partial transparency (docs/sst-render.md, glTF features)
 };
 
 // glTF metallic-roughness material. Texture indices are -1 when absent.

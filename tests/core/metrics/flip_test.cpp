@@ -12,50 +12,18 @@
 #include <vector>
 
 #include "core/util/error.h"
+#include "tests/data/formula_images.h"
 
 using sst::FlipOptions;
 using sst::Image;
 
 namespace {
 
-// The images of tests/data/make_flip_goldens.cpp, rebuilt bit for bit.
-double hash01(uint64_t x, uint64_t y, uint64_t c, uint64_t seed) {
-  uint32_t h = uint32_t((x * 73856093ull) ^ (y * 19349663ull) ^ (c * 83492791ull) ^ (seed * 2654435761ull));
-  h ^= h >> 16;
-  h *= 0x7FEB352Du;
-  h ^= h >> 15;
-  h *= 0x846CA68Bu;
-  h ^= h >> 16;
-  return h / 4294967296.0;
-}
-
-double ldr_reference(int x, int y, int c) {
-  double v = 0.5 + 0.4 * std::sin(0.21 * x + 0.13 * y + 1.7 * c) * std::cos(0.11 * y - 0.07 * x + 0.6 * c);
-  if (x >= 20 && x < 34 && y >= 10 && y < 22) v = c == 0 ? 0.95 : 0.15;
-  if (x == 45) v = 0.05;
-  return v;
-}
-
-double ldr_test(int x, int y, int c) {
-  double v = ldr_reference(x, y, c) + 0.12 * (hash01(x, y, c, 3) - 0.5);
-  if (y >= 30) v += c == 2 ? 0.08 : -0.03;
-  if (x == 45) v = ldr_reference(44, y, c);
-  if (x == 46) v = 0.05;
-  return std::clamp(v, 0.0, 1.0);
-}
-
-double hdr_reference(int x, int y, int c) {
-  double v = std::max(0.02 + 0.3 * (x / 64.0) * (y / 48.0) * (1.0 + 0.3 * c) + 0.1 * std::sin(0.3 * x + c), 0.0);
-  if (x >= 8 && x < 14 && y >= 6 && y < 12) v = 40.0 + 10.0 * c;
-  if (x < 6 && y >= 40) v = 0.0;
-  return v;
-}
-
-double hdr_test(int x, int y, int c) {
-  double v = hdr_reference(x, y, c) * (0.6 + 0.8 * hash01(x, y, c, 5));
-  if (hash01(x, y, 0, 9) > 0.995) v += 25.0;
-  return v;
-}
+using sst::test::formula::hash01;
+constexpr auto* ldr_reference = &sst::test::formula::flip_ldr_reference;
+constexpr auto* ldr_test = &sst::test::formula::flip_ldr_test;
+constexpr auto* hdr_reference = &sst::test::formula::flip_hdr_reference;
+constexpr auto* hdr_test = &sst::test::formula::flip_hdr_test;
 
 Image make(const std::function<double(int, int, int)>& value, int width = 64, int height = 48) {
   Image im(width, height);

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/util/error.h"
+#include "tests/data/formula_images.h"
 #include "tests/test_util.h"
 
 using sst::Image;
@@ -19,15 +20,7 @@ namespace {
 
 // The images of tests/data/make_ssim_goldens.py, rebuilt bit for bit: each value is computed in
 // double and rounded to float, as numpy does when it stores into a float32 array.
-double hash01(uint64_t x, uint64_t y, uint64_t c, uint64_t seed) {
-  uint32_t h = uint32_t((x * 73856093ull) ^ (y * 19349663ull) ^ (c * 83492791ull) ^ (seed * 2654435761ull));
-  h ^= h >> 16;
-  h *= 0x7FEB352Du;
-  h ^= h >> 15;
-  h *= 0x846CA68Bu;
-  h ^= h >> 16;
-  return h / 4294967296.0;
-}
+using sst::test::formula::hash01;
 
 double pattern(int x, int y, int c) {
   return 0.5 + 0.45 * std::sin(0.37 * x + 0.23 * y + 1.1 * c) * std::cos(0.19 * y - 0.11 * x + 0.5 * c);

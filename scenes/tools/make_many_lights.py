@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the three many-light scenes of sst's light-sampler experiments (configs/lights-*.json).
+"""Writes the many-light scenes of sst's light-sampler experiments (configs/lights-*.json).
 
   cornell-lamp/cornell-lamp.gltf  The Cornell box (scenes/cornell-box.gltf) with its lamp cut into
                                   a 78 x 78 grid of quads: 12,168 emissive triangles (the RTSLC
@@ -10,7 +10,7 @@
                                   312 lit windows (two triangles each, one-sided), 20
                                   strings of 40 coloured bulbs (octahedra, eight triangles each),
                                   neon signs (boxes), 20 point-light street lamps and 10 spot lights
-                                  over doors: about 9,000 emissive triangles and 30 punctual lights.
+                                  over doors: 7,120 emissive triangles and 30 punctual lights.
   light-field/light-field.gltf    A 40 m field with 30 box occluders, 2,000 small double-sided
                                   emissive quads at random places and orientations whose radiance
                                   spans two orders of magnitude, 40 point and 10 spot lights:

@@ -147,9 +147,16 @@ SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec
   // vertices 1 .. max_bounces+1 gather light, and vertex 1's share is the direct layer.
   for (int k = 1; k <= max_bounces + 1; ++k) {
     Brdf brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
+    // A view under the interpolated normal but above the facet (a coarse curved mesh seen at a
+    // grazing angle) is shaded with the facet's normal: ending the path there lost the light such
+    // surfaces reflect, darkening what they light (results/README.md, thin tubes against Cycles).
     Basis basis = basis_from_normal(s.ns);
     vec3 wo = to_local(basis, -normalize3(dir));
-    if (wo.z <= 0.0f) break;  // grazing view under the shading normal: no reflection defined
+    if (wo.z <= 0.0f) {
+      basis = basis_from_normal(s.ng);
+      wo = to_local(basis, -normalize3(dir));
+    }
+    if (wo.z <= 0.0f) break;  // exactly grazing the facet: no reflection defined
 
     // Every vertex draws its samples in the same order (light, BRDF, roulette), so sample set
     // numbers line up across paths and the sets stay stratified per vertex.

@@ -76,6 +76,33 @@ TEST(PathTracerAnalytic, DirectionalLightGivesEcos) {
   for (float x : {-2.0f, 0.0f, 3.0f}) EXPECT_NEAR(p.radiance_at(x, 1.0f).x, expected, 0.005f * expected);
 }
 
+// Vertex normals tilted 73 degrees off the facet: a view under the shading normal but above the
+// facet (a coarse curved mesh at a grazing angle) is shaded with the facet's normal instead of
+// ending the path; a view above the shading normal still sees the shading normal's cosine.
+TEST(PathTracerAnalytic, ViewUnderTheShadingNormalIsShadedWithTheFacetNormal) {
+  const float albedo = 0.5f, irradiance = 3.0f;
+  Scene scene = test::lambert_plane(albedo, 50.0f, 5.0f, 1.0f);
+  const vec3 tilted = glm::normalize(vec3(1.0f, 0.0f, 0.3f));
+  for (vec3& n : scene.normals) n = tilted;
+  scene.lights.push_back(light(LightType::Directional, vec3(0), {0, 0, -1}, irradiance));
+  Prepared p(std::move(scene));
+  auto radiance_along = [&](vec3 travel) {
+    PathTracerParams params;
+    params.max_bounces = 0;
+    Ray ray;
+    ray.direction = glm::normalize(travel);
+    ray.origin = -5.0f * ray.direction;  // toward the plane's centre
+    PixelSampler sampler = pixel_sampler(1, 2, 3);
+    RayCounters counters;
+    PathSample s = trace_path(p.context, params, ray, sampler, counters);
+    return (s.direct + s.indirect).x;
+  };
+  const float facet = albedo / kPi * irradiance;                  // cos = 1 about the facet's normal
+  const float shading = albedo / kPi * irradiance * tilted.z;     // the tilted normal's cosine
+  EXPECT_NEAR(radiance_along({1.0f, 0.0f, -0.3f}), facet, 1e-5f * facet);      // under the shading normal
+  EXPECT_NEAR(radiance_along({-1.0f, 0.0f, -0.3f}), shading, 1e-5f * shading);  // above it
+}
+
 TEST(PathTracerAnalytic, SpotLightFollowsTheGltfConeFalloff) {
   const float albedo = 0.5f, intensity = 4.0f, h = 2.0f;
   Scene scene = test::lambert_plane(albedo, 50.0f, 5.0f, 1.0f);

@@ -19,11 +19,7 @@
 
 namespace {
 
-using sst::test::formula::hash01;
-constexpr auto* ldr_reference = &sst::test::formula::flip_ldr_reference;
-constexpr auto* ldr_test = &sst::test::formula::flip_ldr_test;
-constexpr auto* hdr_reference = &sst::test::formula::flip_hdr_reference;
-constexpr auto* hdr_test = &sst::test::formula::flip_hdr_test;
+namespace formula = sst::test::formula;
 
 constexpr int kWidth = 64, kHeight = 48;
 
@@ -42,8 +38,8 @@ int main() {
   const int pixels[2][5][2] = {{{1, 19}, {27, 15}, {45, 20}, {46, 20}, {10, 35}},
                                {{12, 10}, {10, 8}, {30, 30}, {2, 45}, {50, 20}}};
   for (int hdr = 0; hdr < 2; ++hdr) {
-    std::vector<float> reference = hdr ? make(hdr_reference) : make(ldr_reference);
-    std::vector<float> test = hdr ? make(hdr_test) : make(ldr_test);
+    std::vector<float> reference = hdr ? make(formula::flip_hdr_reference) : make(formula::flip_ldr_reference);
+    std::vector<float> test = hdr ? make(formula::flip_hdr_test) : make(formula::flip_ldr_test);
     FLIP::Parameters parameters;  // 67 ppd; HDR: exposures from the reference, ACES
     float float_mean = 0.0f;
     float* map = nullptr;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/image/image.h"
+#include "core/metrics/error_map.h"
 #include "core/metrics/flip.h"
 #include "core/metrics/metrics.h"
 #include "core/metrics/same_shape.h"
@@ -34,23 +35,22 @@ ImageMetrics metrics_of(const Input& test, const Input& reference) {
   return compare_images(linear_of(test), linear_of(reference), false);
 }
 
-// LDR- and HDR-FLIP (core/metrics/flip.h) of RGB inputs, NaN otherwise. HDR-FLIP needs HDR: a
-// pair of display images (PNGs) has LDR-FLIP only, as the FLIP tool reports them.
+// LDR- and HDR-FLIP (core/metrics/flip.h) of linear RGB images, NaN otherwise. HDR-FLIP needs HDR:
+// a pair of display images (PNGs) has LDR-FLIP only, as the FLIP tool reports them.
 struct Flip {
   FlipResult ldr, hdr;
 };
 
-Flip flip_of(const CompareArgs& args, const Input& test, const Input& reference) {
+Flip flip_of(const CompareArgs& args, const Image& test, const Image& reference, bool display_pair) {
   Flip f;
   f.ldr.mean = f.hdr.mean = NAN;
-  if (test.values.channels != 3) return f;
+  if (test.channels != 3) return f;
   FlipOptions options;
   options.keep_map = !args.flip_map.empty();
-  const Image t = linear_of(test), r = linear_of(reference);
-  f.ldr = flip_ldr(t, r, options);
-  if (!(test.display && reference.display)) {
+  f.ldr = flip_ldr(test, reference, options);
+  if (!display_pair) {
     options.keep_map = !args.flip_hdr_map.empty();
-    f.hdr = flip_hdr(t, r, options);
+    f.hdr = flip_hdr(test, reference, options);
   }
   return f;
 }
@@ -60,7 +60,7 @@ void write_flip_map(const std::string& path, const FlipResult& r, const char* wh
   if (r.map.data.empty()) throw Error(std::string("no ") + which + " map for " + path + ": it needs RGB" +
                                       (std::string(which) == "HDR-FLIP" ? " HDR inputs" : " inputs"));
   const bool exr = path.size() >= 4 && path.compare(path.size() - 4, 4, ".exr") == 0;
-  if (!exr) return write_image(path, flip_heatmap(r.map));
+  if (!exr) return write_image(path, inferno_image(r.map));
   Image grey(r.map.width, r.map.height, 3);
   for (size_t p = 0; p < r.map.pixel_count(); ++p)
     for (int c = 0; c < 3; ++c) grey.data[p * 3 + c] = r.map.data[p];
@@ -142,12 +142,12 @@ int run_compare(const CompareArgs& args) {
     throw Error("cannot compare " + args.test + " (" + shape_string(test.values) + ") with " +
                 args.reference + " (" + shape_string(reference.values) + "): sizes differ");
   const ImageMetrics m = metrics_of(test, reference);
+  const Image linear_test = linear_of(test), linear_reference = linear_of(reference);
   MaskedErrors masked;
-  if (!args.mask.empty()) masked = masked_errors(linear_of(test), linear_of(reference), linear_of(load(args.mask, "")));
+  if (!args.mask.empty()) masked = masked_errors(linear_test, linear_reference, linear_of(load(args.mask, "")));
   const MaskedErrors* masked_or_null = args.mask.empty() ? nullptr : &masked;
-  if (!args.heatmap.empty())
-    write_image(args.heatmap, error_heatmap(linear_of(test), linear_of(reference), args.heatmap_max));
-  const Flip flip = flip_of(args, test, reference);
+  if (!args.heatmap.empty()) write_image(args.heatmap, error_heatmap(linear_test, linear_reference, args.heatmap_max));
+  const Flip flip = flip_of(args, linear_test, linear_reference, test.display && reference.display);
   if (!args.flip_map.empty()) write_flip_map(args.flip_map, flip.ldr, "LDR-FLIP");
   if (!args.flip_hdr_map.empty()) write_flip_map(args.flip_hdr_map, flip.hdr, "HDR-FLIP");
   if (args.json)

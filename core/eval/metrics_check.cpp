@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/eval/json_fields.h"
+#include "core/util/json_io.h"
 
 namespace sst {
 namespace {
@@ -79,8 +80,7 @@ CheckOutcome check_against_baseline(const nlohmann::json& fresh, const nlohmann:
       const double flip_b = number(b, key.c_str()), flip_f = number(f, key.c_str());
       t << "| " << name << " | " << metric << " | " << fmt(flip_b) << " | " << fmt(flip_f) << " | "
         << change(flip_b, flip_f) << " | - | recorded | |\n";
-      out.flip[name][metric] = {{"baseline", std::isfinite(flip_b) ? nlohmann::json(flip_b) : nlohmann::json(nullptr)},
-                                {"fresh", std::isfinite(flip_f) ? nlohmann::json(flip_f) : nlohmann::json(nullptr)}};
+      out.flip[name][metric] = {{"baseline", number_or_null(flip_b)}, {"fresh", number_or_null(flip_f)}};
     }
     if (rmse.status == "WORSE") fail();
     if (ssim.status == "WORSE") fail();

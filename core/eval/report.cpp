@@ -341,7 +341,7 @@ json group_row(const Index& index, const json& g, const std::vector<std::string>
   cells.push_back(cell(fmt(mean_finite(run_values(runs, "metrics", "psnr")))));
   cells.push_back(cell(fmt(ssim)));
   if (flip)
-    for (const char* key : {"flip_ldr", "flip_hdr"}) cells.push_back(cell(fmt(mean_finite(run_values(runs, "metrics", key)))));
+    for (const char* key : {"flip_ldr_mean", "flip_hdr_mean"}) cells.push_back(cell(fmt(number(g, key))));
   for (json c : {cell(fmt(mean_finite(run_values(runs, nullptr, "efficiency")))),
                  cell(fmt(mean_finite(run_values(runs, nullptr, "ssim_gain_pct_per_ms")))),
                  cell(fmt(number(g, "bias2"))), cell(fmt(number(g, "variance"))), cell(std::to_string(runs.size()))})

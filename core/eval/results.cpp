@@ -21,8 +21,6 @@ namespace {
 
 double median_time(const nlohmann::json& run) { return run["time_ms"]["median"].get<double>(); }
 
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 // Runs compared with each other for gain and Pareto front: one scene, one kind of reference,
 // one material model (diffuse-only renders have their own reference).
 std::string comparison_set(const nlohmann::json& run) {
@@ -44,13 +42,13 @@ void add_efficiency_and_gain(std::vector<nlohmann::json>& runs) {
     base_values[set] = {(*b)["id"], {number((*b)["metrics"]["ssim"]), median_time(*b)}};
   for (nlohmann::json& r : runs) {
     double rmse = number(r["metrics"]["rmse"]), t = median_time(r);
-    r["efficiency"] = finite_or_null(1.0 / (rmse * rmse * t / 1000.0));
+    r["efficiency"] = number_or_null(1.0 / (rmse * rmse * t / 1000.0));
     const auto& [base_id, values] = base_values[comparison_set(r)];
     auto [ssim_b, t_b] = values;
     double ssim = number(r["metrics"]["ssim"]);
     r["gain_base"] = base_id;
     r["ssim_gain_pct_per_ms"] = (r["id"] != base_id && t > t_b)
-                                    ? finite_or_null(100.0 * (ssim - ssim_b) / ssim_b / (t - t_b))
+                                    ? number_or_null(100.0 * (ssim - ssim_b) / ssim_b / (t - t_b))
                                     : nlohmann::json(nullptr);
   }
 }
@@ -94,10 +92,10 @@ void add_seed_statistics(nlohmann::json& group, const std::string& name, const s
   std::vector<double> deviations;
   for (double x : v) deviations.push_back(std::abs(x - mid));
   bool several = v.size() > 1;
-  group[name + "_mean"] = finite_or_null(mean);
-  group[name + "_std"] = finite_or_null(several ? std::sqrt(s / double(v.size() - 1)) : NAN);
-  group[name + "_median"] = finite_or_null(mid);
-  group[name + "_robust_std"] = finite_or_null(several ? 1.4826 * median(deviations) : NAN);
+  group[name + "_mean"] = number_or_null(mean);
+  group[name + "_std"] = number_or_null(several ? std::sqrt(s / double(v.size() - 1)) : NAN);
+  group[name + "_median"] = number_or_null(mid);
+  group[name + "_robust_std"] = number_or_null(several ? 1.4826 * median(deviations) : NAN);
 }
 
 // A metric that runs recorded before it lack (FLIP): statistics over the runs that have it, and

@@ -68,15 +68,18 @@ Image squared_error_image(const Image& test, const Image& reference) {
   return out;
 }
 
-Image error_heatmap(const Image& test, const Image& reference, float max_error) {
-  const Image rel = relative_error_image(test, reference);
-  const float scale = max_error > 0.0f ? 1.0f / max_error : 1.0f;
-  Image out(rel.width, rel.height, 3);
-  for (size_t p = 0; p < rel.pixel_count(); ++p) {
-    const vec3 c = inferno(rel.data[p] * scale);
+Image inferno_image(const Image& values, float max_value) {
+  const float scale = max_value > 0.0f ? 1.0f / max_value : 1.0f;
+  Image out(values.width, values.height, 3);
+  for (size_t p = 0; p < values.pixel_count(); ++p) {
+    const vec3 c = inferno(values.data[p * values.channels] * scale);
     for (int k = 0; k < 3; ++k) out.data[p * 3 + k] = srgb_decode(c[k]);
   }
   return out;
+}
+
+Image error_heatmap(const Image& test, const Image& reference, float max_error) {
+  return inferno_image(relative_error_image(test, reference), max_error);
 }
 
 }  // namespace sst

@@ -14,5 +14,8 @@ Image squared_error_image(const Image& test, const Image& reference);
 Image error_heatmap(const Image& test, const Image& reference, float max_error = 1.0f);
 // inferno at t in [0,1] (clamped), as display (sRGB-encoded) RGB.
 vec3 inferno(float t);
+// A 1-channel image of values through inferno (0 -> black, >= max_value -> pale yellow), as linear
+// RGB: error_heatmap's colours for any per-pixel error, e.g. a FLIP map (core/metrics/flip.h).
+Image inferno_image(const Image& values, float max_value = 1.0f);
 
 }  // namespace sst

@@ -9,9 +9,9 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
-#include "core/metrics/error_map.h"
 #include "core/metrics/same_shape.h"
 #include "core/util/error.h"
+#include "core/util/json_io.h"
 
 namespace sst {
 namespace {
@@ -424,8 +424,6 @@ Image non_negative(const Image& linear) {
   return out;
 }
 
-nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 }  // namespace
 
 float flip_aces(float x) {
@@ -466,15 +464,6 @@ FlipResult flip_hdr(const Image& test, const Image& reference, const FlipOptions
   result.stop_exposure = stop;
   result.exposures = count;
   return result;
-}
-
-Image flip_heatmap(const Image& map) {
-  Image out(map.width, map.height, 3);
-  for (size_t p = 0; p < map.pixel_count(); ++p) {
-    const vec3 c = inferno(map.data[p * map.channels]);
-    for (int k = 0; k < 3; ++k) out.data[p * 3 + k] = srgb_decode(c[k]);
-  }
-  return out;
 }
 
 nlohmann::json flip_json(double ldr, double hdr) {

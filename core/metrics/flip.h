@@ -57,10 +57,6 @@ FlipResult flip_hdr(const Image& test, const Image& reference, const FlipOptions
 // The ACES filmic curve HDR-FLIP tone-maps with (Narkowicz's fit, applied to 0.6 x), per channel.
 float flip_aces(float x);
 
-// A FLIP map (1 channel, values in [0,1]) in matplotlib's inferno, as linear RGB, so that
-// write_image(".png") shows the colormap's sRGB colours: 0 black, 1 pale yellow.
-Image flip_heatmap(const Image& map);
-
 // {"flip_ldr": mean, "flip_hdr": mean}, null where a mean is not finite. For the metrics of a run.
 nlohmann::json flip_json(double ldr, double hdr);
 // Both means of linear images, the fields flip_json writes; NaN for images without 3 channels.

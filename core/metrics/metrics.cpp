@@ -10,6 +10,7 @@
 
 #include "core/metrics/same_shape.h"
 #include "core/util/error.h"
+#include "core/util/json_io.h"
 
 namespace sst {
 namespace {
@@ -103,10 +104,6 @@ void add_error_sums(const Image& test, const Image& reference, ImageMetrics& m) 
   m.rel_mse = n > 0 ? rel / n : 0.0;
   m.mae = n > 0 ? ae / n : 0.0;
   m.psnr = mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
-}
-
-nlohmann::json number_or_null(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iterator>
 #include <fstream>
@@ -79,5 +80,7 @@ nlohmann::json read_json_file(const std::string& path) {
     throw Error(path + ": malformed JSON (" + what.substr(what.find(']') + 2) + ")");
   }
 }
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 }  // namespace sst

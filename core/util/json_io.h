@@ -21,6 +21,8 @@ constexpr size_t kMaxJsonDepth = 256;
 size_t json_nesting_depth(std::string_view text);
 // Throws sst::Error "<name>: JSON nested deeper than 256 levels" when text is nested deeper.
 void require_json_depth(std::string_view text, const std::string& name);
+// v, or null where v is not finite: JSON has no NaN or infinity.
+nlohmann::json number_or_null(double v);
 // Writes `text` to `path` atomically, creating parent directories.
 void write_text_atomic(const std::string& path, const std::string& text);
 }  // namespace sst

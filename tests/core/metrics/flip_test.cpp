@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <vector>
 
+#include "core/metrics/error_map.h"
 #include "core/util/error.h"
 #include "tests/data/formula_images.h"
 
@@ -327,7 +328,7 @@ TEST(Flip, MetricsJsonHasBothMeansAndNullsWithoutRgb) {
 TEST(Flip, HeatmapRunsFromBlackToPaleYellow) {
   Image map(2, 1, 1);
   map.data = {0.0f, 1.0f};
-  const Image heat = sst::flip_heatmap(map);
+  const Image heat = sst::inferno_image(map);
   ASSERT_EQ(heat.channels, 3);
   EXPECT_LT(heat.at(0, 0, 0) + heat.at(0, 0, 1) + heat.at(0, 0, 2), 0.01f);
   EXPECT_GT(heat.at(1, 0, 0), 0.9f);

@@ -21,6 +21,7 @@
 #include "core/math/student_t.h"
 #include "core/util/error.h"
 #include "core/util/hash.h"
+#include "core/util/json_io.h"
 
 namespace sst {
 namespace {
@@ -288,21 +289,20 @@ nlohmann::json group_json(const Row& row, const Verdict& v) {
   nlohmann::json g = {{"group", row.group}, {"method", row.method}, {"seeds_baseline", row.seeds_base},
                       {"seeds_fresh", row.seeds_fresh}};
   g["status"] = status(v);
-  auto finite_or_null = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
-  g["image_t"] = finite_or_null(row.image.t);
+  g["image_t"] = number_or_null(row.image.t);
   g["image_p"] = row.image.p;
-  g["block_t"] = finite_or_null(std::abs(row.worst_block.t));
+  g["block_t"] = number_or_null(std::abs(row.worst_block.t));
   g["block_p"] = row.worst_block.p;
   g["failing_blocks"] = v.failing_blocks;
-  g["energy_ratio"] = finite_or_null(row.energy_ratio);
+  g["energy_ratio"] = number_or_null(row.energy_ratio);
   g["energy_p"] = row.energy.p;
-  g["noise_ratio"] = finite_or_null(row.noise_ratio);
+  g["noise_ratio"] = number_or_null(row.noise_ratio);
   g["noise_p"] = row.noise.p;
   g["same_seeds"] = row.same_n;
   if (!row.same_worst_what.empty()) {
     g["same_seeds_largest"] = row.same_worst_what;
-    g["same_seeds_change"] = finite_or_null(std::expm1(row.same_worst.change));
-    g["same_seeds_t"] = finite_or_null(row.same_worst.t.t);
+    g["same_seeds_change"] = number_or_null(std::expm1(row.same_worst.change));
+    g["same_seeds_t"] = number_or_null(row.same_worst.t.t);
     g["same_seeds_p"] = row.same_worst.t.p;
     g["same_seeds_failing"] = v.same_failing;
   }

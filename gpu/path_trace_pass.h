@@ -7,6 +7,9 @@
 #include "core/render/camera.h"
 #include "core/render/frame.h"
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/pt/path_tracer.h"
 #include "gpu/compute_pipeline.h"
@@ -23,6 +26,9 @@ struct GpuPathTraceResult {
   FrameOutput frame;
   double gpu_ms = 0.0;  // all dispatches, from timestamps
   int dispatches = 0;
+  // The wavefront's GPU time per stage (camera, shade, shadow, bounce, accumulate); empty for the
+  // megakernel.
+  std::vector<std::pair<std::string, double>> stage_ms;
 };
 
 // Renders `spp` camera paths per pixel (sample indices 0..spp-1 of pixel_sampler(seed, pixel, i)),
@@ -42,5 +48,17 @@ std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& c
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
                                       bool diffuse_only);
+
+// The wavefront (gpu/shaders/pt_wavefront.comp): the same image bits as the megakernel, each stage
+// of the paths a dispatch of its own over waves of at most kPathWavePaths paths (one sample of a
+// range of pixels each), the states kept in a buffer between stages.
+constexpr size_t kPathWavePaths = size_t(1) << 16;
+struct PathWavefrontPipelines {
+  std::unique_ptr<ComputePipeline> stages[5];  // pt_wavefront_0 .. _4
+};
+std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const VulkanContext& context);
+GpuPathTraceResult render_path_tracer_wavefront(const GpuRenderContext& gpu, PathWavefrontPipelines& pipelines,
+                                               const PinholeCamera& camera, int width, int height, uint32_t seed,
+                                               int spp, const PathTracerParams& params, bool diffuse_only);
 
 }  // namespace sst::gpu

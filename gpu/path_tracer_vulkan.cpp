@@ -6,13 +6,24 @@
 namespace sst::gpu {
 
 FrameOutput VulkanPathTracer::render(const RenderContext& ctx, const GpuRenderContext& gpu, StageTimer& timer) {
-  auto pipeline = timer.time("shader_compile", [&] { return make_path_trace_pipeline(gpu.vulkan()); });
-  GpuPathTraceResult r = timer.time("render", [&] {
-    return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
-                              ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
-  });
-  r.frame.method_counters["gpu_ms"] = {{"render", r.gpu_ms}};
-  r.frame.method_counters["gpu"] = {{"render_dispatches", r.dispatches}};
+  GpuPathTraceResult r;
+  if (ctx.options.gpu_paths == "wavefront") {
+    auto pipelines = timer.time("shader_compile", [&] { return make_path_wavefront_pipelines(gpu.vulkan()); });
+    r = timer.time("render", [&] {
+      return render_path_tracer_wavefront(gpu, *pipelines, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
+                                          ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
+    });
+  } else {
+    auto pipeline = timer.time("shader_compile", [&] { return make_path_trace_pipeline(gpu.vulkan()); });
+    r = timer.time("render", [&] {
+      return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
+                                ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
+    });
+  }
+  nlohmann::json gpu_ms = {{"render", r.gpu_ms}};
+  for (const auto& [stage, ms] : r.stage_ms) gpu_ms[stage] = ms;
+  r.frame.method_counters["gpu_ms"] = gpu_ms;
+  r.frame.method_counters["gpu"] = {{"render_dispatches", r.dispatches}, {"paths", ctx.options.gpu_paths}};
   return std::move(r.frame);
 }
 

@@ -2,7 +2,10 @@
 
 #include "core/accel/flat_bvh.h"
 
+#include <algorithm>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "core/scene/scene_access.h"
 #include "core/scene/triangle_attributes.h"
@@ -140,16 +143,171 @@ bool EmbreeAccel::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
 }
 
-size_t EmbreeAccel::replay(const RecordedRay* rays, size_t count) const {
+RayBatchApi parse_ray_batch_api(const std::string& name) {
+  if (name == "single") return RayBatchApi::single;
+  if (name == "stream") return RayBatchApi::stream;
+  if (name == "packet8") return RayBatchApi::packet8;
+  if (name == "packet16") return RayBatchApi::packet16;
+  throw Error("unknown batch_rays '" + name + "' (valid: single, stream, packet8, packet16)");
+}
+
+namespace {
+
+template <int N>
+void set_packet_ray(RTCRayNt<N>& packet, int lane, const Ray& ray) {
+  packet.org_x[lane] = ray.origin.x;
+  packet.org_y[lane] = ray.origin.y;
+  packet.org_z[lane] = ray.origin.z;
+  packet.tnear[lane] = ray.tmin;
+  packet.dir_x[lane] = ray.direction.x;
+  packet.dir_y[lane] = ray.direction.y;
+  packet.dir_z[lane] = ray.direction.z;
+  packet.time[lane] = 0.0f;
+  packet.tfar[lane] = ray.tmax;
+  packet.mask[lane] = UINT32_MAX;
+  packet.id[lane] = 0;
+  packet.flags[lane] = 0;
+}
+
+// Packets of N rays through rtcIntersectN / rtcOccludedN (N = 8 or 16); the last one partly valid.
+template <int N>
+void intersect_packets(RTCScene scene, const Ray* rays, size_t count, Hit* hits) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (size_t first = 0; first < count; first += N) {
+    alignas(64) RTCRayHitNt<N> packet;
+    alignas(64) int valid[N];
+    const int lanes = int(std::min<size_t>(N, count - first));
+    for (int i = 0; i < N; ++i) {
+      valid[i] = i < lanes ? -1 : 0;
+      set_packet_ray(packet.ray, i, rays[first + size_t(std::min(i, lanes - 1))]);
+      packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+      packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    if constexpr (N == 8)
+      rtcIntersect8(valid, scene, &context, reinterpret_cast<RTCRayHit8*>(&packet));
+    else
+      rtcIntersect16(valid, scene, &context, reinterpret_cast<RTCRayHit16*>(&packet));
+    for (int i = 0; i < lanes; ++i) {
+      Hit& hit = hits[first + size_t(i)];
+      hit = Hit{};
+      if (packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+      hit.t = packet.ray.tfar[i];
+      hit.triangle = packet.hit.primID[i];
+      hit.barycentric = {packet.hit.u[i], packet.hit.v[i]};
+    }
+  }
+}
+
+template <int N>
+void occluded_packets(RTCScene scene, const Ray* rays, size_t count, bool* occluded) {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (size_t first = 0; first < count; first += N) {
+    alignas(64) RTCRayNt<N> packet;
+    alignas(64) int valid[N];
+    const int lanes = int(std::min<size_t>(N, count - first));
+    for (int i = 0; i < N; ++i) {
+      valid[i] = i < lanes ? -1 : 0;
+      set_packet_ray(packet, i, rays[first + size_t(std::min(i, lanes - 1))]);
+    }
+    if constexpr (N == 8)
+      rtcOccluded8(valid, scene, &context, reinterpret_cast<RTCRay8*>(&packet));
+    else
+      rtcOccluded16(valid, scene, &context, reinterpret_cast<RTCRay16*>(&packet));
+    for (int i = 0; i < lanes; ++i) occluded[first + size_t(i)] = packet.tfar[i] < 0.0f;
+  }
+}
+
+}  // namespace
+
+void EmbreeAccel::intersect(const Ray* rays, size_t count, Hit* hits, RayBatchApi api) const {
+  if (flat_ || log_ || api == RayBatchApi::single) {
+    for (size_t i = 0; i < count; ++i) hits[i] = intersect(rays[i]);
+    return;
+  }
+  if (api == RayBatchApi::packet8) return intersect_packets<8>(scene_, rays, count, hits);
+  if (api == RayBatchApi::packet16) return intersect_packets<16>(scene_, rays, count, hits);
+  constexpr size_t kChunk = 256;  // a stream's RTCRayHits on the stack
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (size_t first = 0; first < count; first += kChunk) {
+    RTCRayHit stream[kChunk];
+    const size_t n = std::min(kChunk, count - first);
+    for (size_t i = 0; i < n; ++i) {
+      stream[i].ray = to_rtc(rays[first + i]);
+      stream[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      stream[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(scene_, &context, stream, unsigned(n), sizeof(RTCRayHit));
+    for (size_t i = 0; i < n; ++i) {
+      Hit& hit = hits[first + i];
+      hit = Hit{};
+      if (stream[i].hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      hit.t = stream[i].ray.tfar;
+      hit.triangle = stream[i].hit.primID;
+      hit.barycentric = {stream[i].hit.u, stream[i].hit.v};
+    }
+  }
+}
+
+void EmbreeAccel::occluded(const Ray* rays, size_t count, bool* occluded_out, RayBatchApi api) const {
+  if (flat_ || log_ || api == RayBatchApi::single) {
+    for (size_t i = 0; i < count; ++i) occluded_out[i] = occluded(rays[i]);
+    return;
+  }
+  if (api == RayBatchApi::packet8) return occluded_packets<8>(scene_, rays, count, occluded_out);
+  if (api == RayBatchApi::packet16) return occluded_packets<16>(scene_, rays, count, occluded_out);
+  constexpr size_t kChunk = 256;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  for (size_t first = 0; first < count; first += kChunk) {
+    RTCRay stream[kChunk];
+    const size_t n = std::min(kChunk, count - first);
+    for (size_t i = 0; i < n; ++i) stream[i] = to_rtc(rays[first + i]);
+    rtcOccluded1M(scene_, &context, stream, unsigned(n), sizeof(RTCRay));
+    for (size_t i = 0; i < n; ++i) occluded_out[first + i] = stream[i].tfar < 0.0f;
+  }
+}
+
+size_t EmbreeAccel::replay(const RecordedRay* rays, size_t count, RayBatchApi api) const {
   size_t hits = 0;
-  for (size_t i = 0; i < count; ++i) {
-    const RecordedRay& r = rays[i];
-    Ray ray;
-    ray.origin = r.origin;
-    ray.direction = r.direction;
-    ray.tmin = r.tmin;
-    ray.tmax = r.tmax;
-    hits += r.occlusion ? occluded(ray) : intersect(ray).valid();
+  if (api == RayBatchApi::single) {
+    for (size_t i = 0; i < count; ++i) {
+      const RecordedRay& r = rays[i];
+      Ray ray;
+      ray.origin = r.origin;
+      ray.direction = r.direction;
+      ray.tmin = r.tmin;
+      ray.tmax = r.tmax;
+      hits += r.occlusion ? occluded(ray) : intersect(ray).valid();
+    }
+    return hits;
+  }
+  std::vector<Ray> batch;
+  std::vector<Hit> found;
+  std::unique_ptr<bool[]> blocked(new bool[count]);
+  for (size_t first = 0; first < count;) {
+    // The run of rays of one kind starting at `first`.
+    size_t end = first + 1;
+    while (end < count && rays[end].occlusion == rays[first].occlusion) ++end;
+    batch.resize(end - first);
+    for (size_t i = first; i < end; ++i) {
+      Ray& ray = batch[i - first];
+      ray.origin = rays[i].origin;
+      ray.direction = rays[i].direction;
+      ray.tmin = rays[i].tmin;
+      ray.tmax = rays[i].tmax;
+    }
+    if (rays[first].occlusion) {
+      occluded(batch.data(), batch.size(), blocked.get(), api);
+      for (size_t i = 0; i < batch.size(); ++i) hits += blocked[i];
+    } else {
+      found.resize(batch.size());
+      intersect(batch.data(), batch.size(), found.data(), api);
+      for (const Hit& h : found) hits += h.valid();
+    }
+    first = end;
   }
   return hits;
 }

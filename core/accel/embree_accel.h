@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 
 #include "core/accel/bvh_layout.h"
 #include "core/accel/ray_log.h"
@@ -40,6 +41,13 @@ float scene_ray_epsilon(const Scene& scene);
 
 struct FlatBvh;
 
+// How a batch of rays (EmbreeAccel::intersect(const Ray*, ...)) goes to Embree: one rtcIntersect1
+// per ray, one ray stream (rtcIntersect1M), or packets of 8 or 16 rays (rtcIntersect8/16). Each
+// ray finds the same hit whichever is used (the choice is speed only: docs/performance.md); the
+// flat BVH answers every ray alone.
+enum class RayBatchApi { single, stream, packet8, packet16 };
+RayBatchApi parse_ray_batch_api(const std::string& name);  // throws for an unknown name
+
 // Alpha-tested triangles (glTF MASK and BLEND: triangle_alpha_passes, core/scene/triangle_attributes.h)
 // are tested by every query, through Embree's filter functions or the flat BVH's hook, against
 // `scene`, which must outlive the accel.
@@ -55,14 +63,20 @@ class EmbreeAccel {
 
   Hit intersect(const Ray& ray) const;
   bool occluded(const Ray& ray) const;
+  // A batch: hits[i] (occluded[i]) for rays[i], as intersect() (occluded()) would answer. Not in
+  // Embree's coherent mode: it was 3% faster on camera rays, but chose the other of two coplanar
+  // triangles at some pixels of the breakfast room, so the images would depend on the batch.
+  void intersect(const Ray* rays, size_t count, Hit* hits, RayBatchApi api) const;
+  void occluded(const Ray* rays, size_t count, bool* occluded, RayBatchApi api) const;
 
   // While `log` is set, every query is also appended to it (one predictable branch per query when
   // it is not). The log must outlive its use; pass null to stop.
   void set_ray_log(RayLog* log) { log_ = log; }
-  // Traces `rays` through intersect() and occluded() alone (rtcIntersect1 and rtcOccluded1, one
-  // ray at a time, for an Embree accel), on the calling thread; returns how many found a hit, so
-  // that the work cannot be optimised away. Not while a log is set: it would record them again.
-  size_t replay(const RecordedRay* rays, size_t count) const;
+  // Traces `rays` through Embree alone (or the flat BVH), on the calling thread: each ray by itself
+  // (RayBatchApi::single), or each run of consecutive rays of one kind as one batch query, as a
+  // batched path tracer hands them over. Returns how many found a hit, so that the work cannot be
+  // optimised away. Not while a log is set: it would record them again.
+  size_t replay(const RecordedRay* rays, size_t count, RayBatchApi api = RayBatchApi::single) const;
 
   // The ray offset of a point known only by its coordinates (scene_ray_epsilon).
   float scene_epsilon() const { return epsilon_; }
@@ -90,17 +104,20 @@ class EmbreeAccel {
 // The RAY_* hooks of the shared path kernels (core/pt/trace_path.h): the closest hit along
 // origin + t dir, t in [0, inf), in the GPU traversal's form (triangle BVH_INVALID_TRIANGLE for a
 // miss), and whether anything lies on origin + t dir, t in [0, tmax).
-inline BvhHit accel_intersect(const EmbreeAccel& accel, vec3 origin, vec3 dir) {
-  Ray ray;
-  ray.origin = origin;
-  ray.direction = dir;
-  Hit h = accel.intersect(ray);
+inline BvhHit to_bvh_hit(const Hit& h) {
   BvhHit out;
   out.t = h.t;
   out.triangle = h.valid() ? h.triangle : BVH_INVALID_TRIANGLE;
   out.u = h.barycentric.x;
   out.v = h.barycentric.y;
   return out;
+}
+
+inline BvhHit accel_intersect(const EmbreeAccel& accel, vec3 origin, vec3 dir) {
+  Ray ray;
+  ray.origin = origin;
+  ray.direction = dir;
+  return to_bvh_hit(accel.intersect(ray));
 }
 
 inline bool accel_occluded(const EmbreeAccel& accel, vec3 origin, vec3 dir, float tmax) {

@@ -4,7 +4,7 @@
 #include <mutex>
 
 #include "core/manylight/shading_point.h"
-#include "core/pt/path_tracer.h"
+#include "core/pt/path_batch.h"
 #include "core/render/pixel_loop.h"
 #include "core/vpl/vpl_clamp.h"
 #include "core/vpl/vpl_ply.h"
@@ -42,61 +42,67 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
   frame.method_counters["vpl"] = to_json(vpl_stats);
   sampler_->prepare(lighting, timer, frame.method_counters);
 
-  PathTracerParams direct_only;
   const bool own_direct = sampler_->estimates_direct();
-  direct_only.max_bounces = own_direct ? -1 : 0;
+  const PathConfig direct_only = path_config(own_direct ? -1 : 0, 0, ctx.options.diffuse_only);
   Accumulators acc;
   const int spp = ctx.options.spp;
+  // One pixel's sums over its samples.
+  struct PixelSums {
+    vec3 direct{0.0f}, indirect{0.0f}, indirect2{0.0f}, albedo{0.0f}, normal{0.0f};
+    float z = 0.0f;
+    uint64_t nodes = 0, samples = 0;
+  };
   timer.time("sampling", [&] {
-    for_each_pixel(ctx.width, ctx.height, ctx.quiet, "sampling", frame.counters, [&](int x, int y, RayCounters& rc) {
-      uint32_t pixel = uint32_t(y) * uint32_t(ctx.width) + uint32_t(x);
-      vec3 direct(0.0f), indirect(0.0f), indirect2(0.0f), albedo(0.0f), normal(0.0f);
-      float z = 0.0f;
-      uint64_t nodes = 0, samples = 0;
+    for_each_tile(ctx.width, ctx.height, ctx.quiet, "sampling", frame.counters, [&](const Tile& tile, RayCounters& rc) {
+      std::vector<PixelSums> sums(size_t(tile.pixels()));
       std::vector<uint32_t> depths;
-      for (int i = 0; i < spp; ++i) {
-        PixelSampler sampler = pixel_sampler(ctx.options.seed, pixel, uint32_t(i));
-        vec2 jitter = pixel_sampler_get2d(sampler);
-        Ray ray = ctx.camera.generate(float(x) + jitter.x, float(y) + jitter.y);
-        Surface hit;
-        PathSample d = trace_path(ctx, direct_only, ray, sampler, rc, &hit);
-        ++rc.samples;
+      // The direct light of the tile's camera paths (in batches), then each path's indirect
+      // estimate at its first hit, with the sampler where the path left it.
+      trace_tile_paths(ctx, direct_only, tile, rc, [&](int pixel, int, const Ray& ray, PathState& path) {
+        const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
+        PathSample& d = path.result;
+        PixelSums& sum = sums[size_t(pixel)];
         vec3 value(0.0f);
         if (d.depth > 0.0f) {
-          ShadingPoint sp = shading_point(hit, ray.direction, ctx.options.diffuse_only, x, y);
-          if (own_direct) d.direct += sampler_->estimate_direct(ctx, sp, sampler, rc);
-          IndirectEstimate e = sampler_->estimate(sp, sampler);
+          ShadingPoint sp = shading_point(path.first_hit, ray.direction, ctx.options.diffuse_only, x, y);
+          if (own_direct) d.direct += sampler_->estimate_direct(ctx, sp, path.ps, rc);
+          IndirectEstimate e = sampler_->estimate(sp, path.ps);
           rc.shadow_rays += e.shadow_rays;
-          nodes += e.nodes_visited;
-          ++samples;
+          sum.nodes += e.nodes_visited;
+          ++sum.samples;
           depths.push_back(e.nodes_visited);
           value = e.value;
         }
         if (!is_finite(d.direct) || !is_finite(value)) {
           ++rc.nonfinite_samples;
-          continue;
+          return;
         }
-        direct += d.direct;
-        indirect += value;
-        indirect2 += value * value;
-        albedo += d.albedo;
-        normal += d.normal;
-        z += d.depth;
-      }
+        sum.direct += d.direct;
+        sum.indirect += value;
+        sum.indirect2 += value * value;
+        sum.albedo += d.albedo;
+        sum.normal += d.normal;
+        sum.z += d.depth;
+      });
       float inv = 1.0f / float(spp);
-      vec3 mean = indirect * inv;
-      frame.direct.set_rgb(x, y, direct * inv);
-      frame.indirect.set_rgb(x, y, mean);
-      frame.color.set_rgb(x, y, (direct + indirect) * inv);
-      frame.albedo.set_rgb(x, y, albedo * inv);
-      frame.normal.set_rgb(x, y, glm::length(normal) > 0.0f ? glm::normalize(normal) : normal);
-      frame.depth.at(x, y, 0) = z * inv;
-      // Variance of the pixel mean (sample variance / spp), for per-pixel z-tests.
-      vec3 var = spp > 1 ? glm::max(indirect2 * inv - mean * mean, vec3(0.0f)) / float(spp - 1) : vec3(0.0f);
-      variance.set_rgb(x, y, var);
-      depth.at(x, y, 0) = samples ? float(nodes) / float(samples) : 0.0f;
-      acc.nodes += nodes;
-      acc.indirect_samples += samples;
+      for (int pixel = 0; pixel < tile.pixels(); ++pixel) {
+        const PixelSums& sum = sums[size_t(pixel)];
+        const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
+        vec3 mean = sum.indirect * inv;
+        frame.direct.set_rgb(x, y, sum.direct * inv);
+        frame.indirect.set_rgb(x, y, mean);
+        frame.color.set_rgb(x, y, (sum.direct + sum.indirect) * inv);
+        frame.albedo.set_rgb(x, y, sum.albedo * inv);
+        frame.normal.set_rgb(x, y, glm::length(sum.normal) > 0.0f ? glm::normalize(sum.normal) : sum.normal);
+        frame.depth.at(x, y, 0) = sum.z * inv;
+        // Variance of the pixel mean (sample variance / spp), for per-pixel z-tests.
+        vec3 var =
+            spp > 1 ? glm::max(sum.indirect2 * inv - mean * mean, vec3(0.0f)) / float(spp - 1) : vec3(0.0f);
+        variance.set_rgb(x, y, var);
+        depth.at(x, y, 0) = sum.samples ? float(sum.nodes) / float(sum.samples) : 0.0f;
+        acc.nodes += sum.nodes;
+        acc.indirect_samples += sum.samples;
+      }
       std::lock_guard lock(acc.histogram_mutex);
       for (uint32_t v : depths) ++acc.depth_histogram[std::min<uint32_t>(v, 64)];
     });

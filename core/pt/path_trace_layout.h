@@ -26,6 +26,24 @@ struct PathTraceParams {
   uint diffuse_only;  // 1: RenderOptions::diffuse_only
 };
 
+// Push constants of pt_wavefront.comp: one wave of camera paths, sample view.sample_offset of
+// pixels first_pixel .. first_pixel + path_count - 1, path slot j holding pixel first_pixel + j.
+struct PathWaveParams {
+  PathTraceParams pt;
+  uint first_pixel;
+  uint path_count;
+  uint pad0;
+  uint pad1;
+};
+
+// What a wave's stages report to the host: the paths still live after a bounce (the host stops
+// dispatching when none are), and whether a slot lay beyond the state buffer (its size per path
+// is the shader compiler's; the host allocates kPathWaveStateBytes and checks this flag).
+struct PathWaveStatus {
+  uint live;
+  uint overflow;
+};
+
 // One pixel's sums over the finite samples taken so far (the CPU's PathSample sum), and its
 // counts (the CPU's RayCounters, per pixel: the host adds them up for exact frame totals).
 struct PathTraceTexel {
@@ -47,6 +65,10 @@ struct PathTraceTexel {
 static_assert(sizeof(PathTraceParams) == 96);
 static_assert(offsetof(PathTraceParams, ray_epsilon) == 80 && offsetof(PathTraceParams, diffuse_only) == 92);
 static_assert(sizeof(PathTraceTexel) == 80);
+static_assert(sizeof(PathWaveParams) == 112 && offsetof(PathWaveParams, first_pixel) == 96);
+// Bytes the host allocates per PathState (core/pt/path_stages.h) in the GPU's std430 layout, which
+// C++ cannot compute: about 460 today; the shader flags a state buffer too small for its slots.
+constexpr size_t kPathWaveStateBytes = 640;
 static_assert(offsetof(PathTraceTexel, indirect) == 16 && offsetof(PathTraceTexel, albedo) == 32);
 static_assert(offsetof(PathTraceTexel, normal) == 48 && offsetof(PathTraceTexel, bounce_rays) == 64);
 }  // namespace sst::glsl

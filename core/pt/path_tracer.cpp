@@ -1,5 +1,6 @@
 #include "core/pt/path_tracer.h"
 
+#include "core/pt/path_batch.h"
 #include "core/render/pixel_loop.h"
 
 namespace sst {
@@ -29,35 +30,36 @@ nlohmann::json PathTracer::params() const { return params_to_json(params_); }
 FrameOutput PathTracer::render(const RenderContext& ctx, StageTimer& timer) {
   FrameOutput frame;
   frame.allocate(ctx.width, ctx.height);
-  const int spp = ctx.options.spp;
-  const float inv_spp = 1.0f / float(spp);
+  const float inv_spp = 1.0f / float(ctx.options.spp);
+  const PathConfig cfg = path_config(params_.max_bounces, params_.rr_min_bounces, ctx.options.diffuse_only);
   timer.time("render", [&] {
-    for_each_pixel(ctx.width, ctx.height, ctx.quiet, "pt", frame.counters, [&](int x, int y, RayCounters& counters) {
-      uint32_t pixel = uint32_t(y) * uint32_t(ctx.width) + uint32_t(x);
-      PathSample sum;
-      for (int i = 0; i < spp; ++i) {
-        PixelSampler sampler = pixel_sampler(ctx.options.seed, pixel, uint32_t(i));
-        vec2 jitter = pixel_sampler_get2d(sampler);
-        PathSample p = trace_path(ctx, params_, ctx.camera.generate(float(x) + jitter.x, float(y) + jitter.y), sampler, counters);
-        ++counters.samples;
+    for_each_tile(ctx.width, ctx.height, ctx.quiet, "pt", frame.counters, [&](const Tile& tile, RayCounters& counters) {
+      std::vector<PathSample> sums(size_t(tile.pixels()));
+      trace_tile_paths(ctx, cfg, tile, counters, [&](int pixel, int, const Ray&, PathState& path) {
+        const PathSample& p = path.result;
         // A NaN or Inf sample is a bug to find, not a pixel to show: drop and count it.
         if (!is_finite(p.direct) || !is_finite(p.indirect)) {
           ++counters.nonfinite_samples;
-          continue;
+          return;
         }
+        PathSample& sum = sums[size_t(pixel)];
         sum.direct += p.direct;
         sum.indirect += p.indirect;
         sum.albedo += p.albedo;
         sum.normal += p.normal;
         sum.depth += p.depth;
+      });
+      for (int pixel = 0; pixel < tile.pixels(); ++pixel) {
+        const PathSample& sum = sums[size_t(pixel)];
+        const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
+        frame.direct.set_rgb(x, y, sum.direct * inv_spp);
+        frame.indirect.set_rgb(x, y, sum.indirect * inv_spp);
+        frame.color.set_rgb(x, y, (sum.direct + sum.indirect) * inv_spp);
+        frame.albedo.set_rgb(x, y, sum.albedo * inv_spp);
+        vec3 n = sum.normal;
+        frame.normal.set_rgb(x, y, glm::length(n) > 0.0f ? glm::normalize(n) : n);
+        frame.depth.at(x, y, 0) = sum.depth * inv_spp;
       }
-      frame.direct.set_rgb(x, y, sum.direct * inv_spp);
-      frame.indirect.set_rgb(x, y, sum.indirect * inv_spp);
-      frame.color.set_rgb(x, y, (sum.direct + sum.indirect) * inv_spp);
-      frame.albedo.set_rgb(x, y, sum.albedo * inv_spp);
-      vec3 n = sum.normal;
-      frame.normal.set_rgb(x, y, glm::length(n) > 0.0f ? glm::normalize(n) : n);
-      frame.depth.at(x, y, 0) = sum.depth * inv_spp;
     });
   });
   return frame;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/accel/embree_accel.h"
 #include "core/lights/light_sampler.h"
 #include "core/util/machine_info.h"
 
@@ -36,6 +37,11 @@ void validate(const RenderOptions& o) {
   parse_emitter_distance(o.light_tree_distance);
   if (o.accel != "embree" && o.accel != "flat")
     throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
+  if (o.path_batch < 0 || o.path_batch > (1 << 20))
+    throw Error("path_batch must be in 0..1048576 (got " + std::to_string(o.path_batch) + ")");
+  parse_ray_batch_api(o.batch_rays);
+  if (o.gpu_paths != "megakernel" && o.gpu_paths != "wavefront")
+    throw Error("unknown gpu_paths '" + o.gpu_paths + "' (valid: megakernel, wavefront)");
   if (o.threads < 0 || o.threads > kMaxThreads)
     throw Error("threads must be in 0.." + std::to_string(kMaxThreads) + " (got " + std::to_string(o.threads) + ")");
   if (!std::isfinite(o.exposure)) throw Error("exposure must be finite");

@@ -14,6 +14,9 @@ struct RenderOptions {
   std::string backend = "cpu";
   int device = 0;  // Vulkan device index (sst-render --list-devices)
   std::string accel = "embree";  // CPU ray queries: embree, or flat (the Vulkan backend's BVH)
+  int path_batch = 1024;          // CPU paths in flight per thread (core/pt/path_batch.h); 0: one at a time
+  std::string gpu_paths = "megakernel";  // Vulkan pt: megakernel (pt.comp) or wavefront (pt_wavefront.comp)
+  std::string batch_rays = "stream";  // how a batch's rays go to Embree (RayBatchApi, core/accel/embree_accel.h)
   int width = 0;   // 0: from height and the camera's aspect ratio
   int height = 0;  // 0: from width and the camera's aspect ratio
   int spp = 16;
@@ -43,6 +46,15 @@ struct RenderOptions {
     v("backend", backend, "cpu (Embree), vulkan (compute shaders) or auto (vulkan on a GPU, else cpu)");
     v("device", device, "Vulkan device index for backend vulkan/auto (see --list-devices)");
     v("accel", accel, "CPU ray queries: embree, or flat (the BVH the Vulkan backend traverses, for exact cross-backend comparisons)");
+    v("path_batch", path_batch,
+      "CPU: camera paths each thread keeps in flight, their rays traced together (0: one path at a time); the "
+      "image bits are the same for every value");
+    v("batch_rays", batch_rays,
+      "CPU: how a batch's rays go to Embree: stream (rtcIntersect1M), packet8, packet16 (rtcIntersect8/16) or "
+      "single (one rtcIntersect1 per ray); the image bits are the same for every value");
+    v("gpu_paths", gpu_paths,
+      "Vulkan pt: megakernel (one invocation per path, to its end) or wavefront (one dispatch per stage of the "
+      "paths, their states in a buffer); the image bits are the same");
     v("width", width, "image width in pixels (0: from height and the camera's aspect ratio)");
     v("height", height, "image height in pixels (0: from width and the camera's aspect ratio)");
     v("spp", spp, "samples per pixel (pt: camera paths; many-light methods: indirect samples)");

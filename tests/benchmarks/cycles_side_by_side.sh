@@ -12,6 +12,7 @@
 #        THREADS         threads for both         [2]
 #        SCENES          scenes of MANIFEST.json  [staircase breakfast-room cornell-box]
 #        KEEP_TMP=1      keep the temp folder (images, logs, JSON)
+#        SST_ARGS        more sst-render options, e.g. "--path-batch 0" []
 #
 # Columns:
 #   cycles_ms/spp   Cycles render_s / spp as printed by render_gltf.py (REFSTATS line):
@@ -63,7 +64,7 @@ cpu_model="$(grep -m1 'model name' /proc/cpuinfo 2>/dev/null | sed 's/.*: *//' |
 [[ -n "$cpu_model" ]] || cpu_model="$(uname -m)"
 echo "# Blender: ${blender_version:-unknown}"
 echo "# CPU: ${cpu_model} ($(nproc) hardware threads); threads used: $THREADS"
-echo "# sst-render: $SST"
+echo "# sst-render: $SST ${SST_ARGS:-}"
 echo "# settings: diffuse-only, max $BOUNCES indirect bounces, spp $SPP, Cycles 1 run, sst median of 3 (--repeat 3)"
 echo "# load average at start: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo '?')"
 
@@ -125,7 +126,7 @@ for scene in ${SCENES:-staircase breakfast-room cornell-box}; do
   sjson="$tmp/$scene.sst.json"
   if ! "$SST" "$gltf" -o "$tmp/$scene.sst.exr" --json "$sjson" \
         --width "$W" --height "$H" --spp "$SPP" --diffuse-only --max-bounces "$BOUNCES" \
-        --threads "$THREADS" -q --repeat 3 >"$tmp/$scene.sst.log" 2>&1; then
+        --threads "$THREADS" -q --repeat 3 ${SST_ARGS:-} >"$tmp/$scene.sst.log" 2>&1; then
     tail -n 30 "$tmp/$scene.sst.log" >&2; die "sst-render of $scene failed (log above)"
   fi
   read -r sst_ms mrays < <(python3 - "$sjson" <<'EOF'

@@ -306,6 +306,46 @@ TEST(GpuPathTracer, BreakfastRoomWithBouncesAgreesUpToDivergingPaths) {
   expect_diverging_paths(compare_pt(scene, {64, 4, 11, PathTracerParams{}.max_bounces}), 0.3, 0.05);
 }
 
+// The wavefront (gpu/shaders/pt_wavefront.comp) runs the megakernel's stages in the same order per
+// path and adds the samples in the same order: the same bits in every layer, the same ray counts,
+// with a wave smaller than the image (kPathWavePaths) exercised by an image larger than one wave.
+TEST(GpuPathTracer, WavefrontIsTheSameBitsAsTheMegakernel) {
+  SKIP_WITHOUT_GPU("pt_wavefront_0");
+  struct Setting {
+    Scene scene;
+    int width, height, spp, max_bounces;
+  };
+  std::vector<Setting> settings;
+  settings.push_back({load_default_scene(), 40, 24, 3, PathTracerParams{}.max_bounces});
+  settings.push_back({load_default_scene(), 300, 240, 1, 1});  // 72000 paths: two waves
+  settings.push_back({test::emissive_box(0.8f, 1.0f, 2.0f), 24, 16, 2, 5});
+  for (const Setting& s : settings) {
+    RenderOptions options;
+    options.method = "pt";
+    options.backend = "vulkan";
+    options.width = s.width;
+    options.height = s.height;
+    options.spp = s.spp;
+    options.seed = 17;
+    const nlohmann::json params = {{"max_bounces", s.max_bounces}, {"rr_min_bounces", 1}};
+    options.gpu_paths = "megakernel";
+    RenderResult mega = render_frame(s.scene, options, params);
+    options.gpu_paths = "wavefront";
+    RenderResult wave = render_frame(s.scene, options, params);
+    SCOPED_TRACE(std::to_string(s.width) + "x" + std::to_string(s.height));
+    EXPECT_EQ(mega.frame.color.data, wave.frame.color.data);
+    EXPECT_EQ(mega.frame.direct.data, wave.frame.direct.data);
+    EXPECT_EQ(mega.frame.indirect.data, wave.frame.indirect.data);
+    EXPECT_EQ(mega.frame.albedo.data, wave.frame.albedo.data);
+    EXPECT_EQ(mega.frame.normal.data, wave.frame.normal.data);
+    EXPECT_EQ(mega.frame.depth.data, wave.frame.depth.data);
+    EXPECT_EQ(mega.frame.counters.shadow_rays, wave.frame.counters.shadow_rays);
+    EXPECT_EQ(mega.frame.counters.bounce_rays, wave.frame.counters.bounce_rays);
+    EXPECT_EQ(mega.frame.counters.samples, wave.frame.counters.samples);
+    EXPECT_GT(wave.frame.counters.bounce_rays, 0u);
+  }
+}
+
 }  // namespace
 }  // namespace sst::gpu
 #endif  // SST_HAVE_VULKAN

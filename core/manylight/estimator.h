@@ -31,6 +31,7 @@ struct ShadingPoint {
   vec3 p SST_DEFAULT(vec3(0.0f));
   vec3 ng SST_DEFAULT(vec3(0.0f));  // geometric normal on the viewer's side
   float offset SST_DEFAULT(0.0f);   // how far rays leaving p are lifted along ng (Surface::offset)
+  vec3 lift SST_DEFAULT(vec3(0.0f));  // the shadow-terminator lift of direct light (Surface::lift)
   Basis basis;                      // shading basis (basis.n = shading normal)
   vec3 wo SST_DEFAULT(vec3(0.0f));  // toward the viewer, in the shading basis
   Brdf brdf;

@@ -18,6 +18,7 @@ SST_FUNC ShadingPoint shading_point(SST_IN(Surface) s, vec3 ray_direction, bool 
   sp.p = s.p;
   sp.ng = s.ng;
   sp.offset = s.offset;
+  sp.lift = s.lift;
   sp.basis = basis_from_normal(s.ns);
   sp.wo = to_local(sp.basis, -normalize3(ray_direction));
   sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);

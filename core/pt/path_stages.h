@@ -102,28 +102,42 @@ struct PathState {
   bool hit;            // the camera ray hit something
 };
 
-// Light sample ls seen from p (geometric normal ng, ray lift `offset`) through the BRDF, before
-// visibility: weighted by the power heuristic against BRDF sampling when `mis`, else the only
-// estimate of that light's contribution. Zero, with no ray to trace (`needs_ray` false), when the
-// light cannot contribute.
-SST_FUNC vec3 light_sample_unshadowed(vec3 p, vec3 ng, float offset, SST_IN(Brdf) brdf, SST_IN(Basis) basis, vec3 wo,
-                                      SST_IN(LightSample) ls, bool mis, SST_OUT(ShadowRay) ray,
+// Where the shadow-terminator lift (Surface.lift) starts to move shadow rays: the cosine of the
+// light with either normal below which they leave from the lifted point, as Cycles' default
+// shadow_terminator_geometry_offset (0.1).
+SST_CONSTANT float kTerminatorCosine = 0.1f;
+
+// Light sample ls seen from p (geometric normal ng, terminator lift `lift`, ray lift `offset`)
+// through the BRDF, before visibility: weighted by the power heuristic against BRDF sampling when
+// `mis`, else the only estimate of that light's contribution. Zero, with no ray to trace
+// (`needs_ray` false), when the light cannot contribute.
+SST_FUNC vec3 light_sample_unshadowed(vec3 p, vec3 ng, vec3 lift, float offset, SST_IN(Brdf) brdf, SST_IN(Basis) basis,
+                                      vec3 wo, SST_IN(LightSample) ls, bool mis, SST_OUT(ShadowRay) ray,
                                       SST_OUT(bool) needs_ray) {
   ray.origin = p;
   ray.dir = ls.wi;
   ray.tmax = 0.0f;
   needs_ray = false;
-  // Light from behind the geometric surface would leak through it: nothing is transmitted.
-  if (dot3(ls.wi, ng) <= 0.0f) return vec3(0.0f);
+  // Light from behind the geometric surface would leak through it: nothing is transmitted. But on a
+  // smooth-shaded mesh (lift not zero) light under the facet may still reach the smooth surface
+  // the shading normal describes: its shadow ray, from the lifted point, decides.
+  float ngl = dot3(ls.wi, ng);
+  if (ngl <= 0.0f && dot3(lift, lift) == 0.0f) return vec3(0.0f);
   vec3 wi = to_local(basis, ls.wi);
   vec3 f = brdf_eval(brdf, wo, wi);
   if (wi.z <= 0.0f || max_component(f) <= 0.0f || max_component(ls.li) <= 0.0f) return vec3(0.0f);
+  // Near the shadow terminator of a smooth-shaded mesh the ray leaves from the lifted point, blended
+  // in as Cycles does: fully where either cosine is 0, not at all where both exceed the cutoff.
+  float nl = wi.z;
+  float amount = nl < kTerminatorCosine ? clamp(2.0f - (ngl + nl) / kTerminatorCosine, 0.0f, 1.0f)
+                                        : clamp(1.0f - ngl / kTerminatorCosine, 0.0f, 1.0f);
+  SST_PRECISE vec3 from = amount > 0.0f ? p + lift * amount : p;
   if (isinf(ls.distance)) {
-    ray.origin = offset_ray_origin(offset, p, ng);
+    ray.origin = offset_ray_origin(offset, from, ng);
     ray.dir = ls.wi;
     ray.tmax = kInf;
   } else {
-    shadow_ray_segment(offset, p, ng, ls.offset, ls.point, ls.normal, ray.origin, ray.dir, ray.tmax);
+    shadow_ray_segment(offset, from, ng, ls.offset, ls.point, ls.normal, ray.origin, ray.dir, ray.tmax);
   }
   needs_ray = true;
   float weight = ls.delta || !mis ? 1.0f : power_heuristic(ls.pdf, brdf_pdf(brdf, wo, wi));
@@ -155,6 +169,7 @@ SST_FUNC Surface surface_none() {
   s.roughness = 1.0f;
   s.emission = vec3(0.0f);
   s.offset = 0.0f;
+  s.lift = vec3(0.0f);
   return s;
 }
 
@@ -231,7 +246,8 @@ SST_FUNC void path_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st
   LightSample ls;
   if (light_sample(SCENE_CTX LIGHT_CTX st.s.p, st.s.ns, u_light, ls)) {
     bool needs_ray;
-    st.nee = light_sample_unshadowed(st.s.p, st.s.ng, st.s.offset, brdf, basis, wo, ls, true, st.shadow, needs_ray);
+    st.nee = light_sample_unshadowed(st.s.p, st.s.ng, st.s.lift, st.s.offset, brdf, basis, wo, ls, true, st.shadow,
+                                     needs_ray);
     if (needs_ray) {
       st.flags |= PATH_RAY_SHADOW;
       st.counters.shadow_rays += 1u;

@@ -25,13 +25,14 @@
 
 SST_BEGIN
 
-// Light sample ls seen from p (geometric normal ng, ray lift `offset`) through the BRDF, with one
-// shadow ray (light_sample_unshadowed, core/pt/path_stages.h).
-SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, float offset, SST_IN(Brdf) brdf, SST_IN(Basis) basis,
-                                 vec3 wo, SST_IN(LightSample) ls, bool mis, SST_INOUT(PathCounters) counters) {
+// Light sample ls seen from p (geometric normal ng, terminator lift `lift`, ray lift `offset`)
+// through the BRDF, with one shadow ray (light_sample_unshadowed, core/pt/path_stages.h).
+SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, vec3 lift, float offset, SST_IN(Brdf) brdf,
+                                 SST_IN(Basis) basis, vec3 wo, SST_IN(LightSample) ls, bool mis,
+                                 SST_INOUT(PathCounters) counters) {
   ShadowRay ray;
   bool needs_ray;
-  vec3 r = light_sample_unshadowed(p, ng, offset, brdf, basis, wo, ls, mis, ray, needs_ray);
+  vec3 r = light_sample_unshadowed(p, ng, lift, offset, brdf, basis, wo, ls, mis, ray, needs_ray);
   if (!needs_ray) return vec3(0.0f);
   counters.shadow_rays += 1u;
   if (RAY_OCCLUDED(ray.origin, ray.dir, ray.tmax)) return vec3(0.0f);

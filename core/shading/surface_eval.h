@@ -51,7 +51,24 @@ struct Surface {
   float roughness SST_DEFAULT(1.0f);
   vec3 emission SST_DEFAULT(vec3(0.0f));  // radiance leaving toward the viewer (0 from the back of one-sided)
   float offset SST_DEFAULT(0.0f);  // how far rays leaving p are lifted along ng (core/accel/ray_offset.h)
+  // From p to the smooth surface the vertex normals describe (terminator_lift): where shadow rays
+  // leave near the shadow terminator; zero on flat-shaded triangles.
+  vec3 lift SST_DEFAULT(vec3(0.0f));
 };
+
+// Hanika's shadow-terminator lift ("Hacking the Shadow Terminator", Ray Tracing Gems II, 2021):
+// p (barycentrics b of triangle v0 v1 v2) moved onto each vertex's tangent plane that it lies
+// under, the three moves blended by b. A coarse mesh's facet lies under the curved surface its
+// vertex normals describe, so a shadow ray from the facet can be blocked by the neighbouring facet
+// where the smooth surface sees the light; from the lifted point it is not. n0..n2 are the vertex
+// normals on the side the ray came from.
+SST_FUNC vec3 terminator_lift(vec3 v0, vec3 v1, vec3 v2, vec3 n0, vec3 n1, vec3 n2, vec3 p, vec2 b) {
+  SST_PRECISE float d0 = min(dot3(p - v0, n0), 0.0f) * (1.0f - b.x - b.y);
+  SST_PRECISE float d1 = min(dot3(p - v1, n1), 0.0f) * b.x;
+  SST_PRECISE float d2 = min(dot3(p - v2, n2), 0.0f) * b.y;
+  SST_PRECISE vec3 lift = -(n0 * d0 + n1 * d1 + n2 * d2);
+  return lift;
+}
 
 // The unit shading normal n bent by material m's tangent-space normal map at uv. The tangent is
 // the vertices' TANGENT interpolated, or, where they have none, the triangle's dp/du (per
@@ -149,7 +166,11 @@ SST_FUNC Surface make_surface(SCENE_CTX_PARAM uint tri, vec2 b, vec3 incoming) {
   if (!s.front_face) s.ng = -s.ng;
   s.uv = triangle_uv(SCENE_CTX t, b);
   SceneMaterial m = SCENE_MATERIAL(s.material);
-  vec3 ns = barycentric_mix3(SCENE_NORMAL(t.v0), SCENE_NORMAL(t.v1), SCENE_NORMAL(t.v2), b);
+  vec3 n0 = SCENE_NORMAL(t.v0), n1 = SCENE_NORMAL(t.v1), n2 = SCENE_NORMAL(t.v2);
+  vec3 ns = barycentric_mix3(n0, n1, n2, b);
+  // The vertex normals on the viewer's side, as ns is turned below.
+  float side = dot3(ns, s.ng) < 0.0f ? -1.0f : 1.0f;
+  s.lift = terminator_lift(v0, v1, v2, n0 * side, n1 * side, n2 * side, s.p, b);
   float len = length3(ns);
   ns = len > 0.0f && is_finite(len) ? ns / len : s.ng;
   if (m.normal_texture >= 0) ns = normal_mapped(SCENE_CTX t, m, b, s.uv, ns, s.ng);

@@ -64,6 +64,7 @@ void main() {
   sp.p = q.p;
   sp.ng = q.ng;
   sp.offset = SCENE_RAY_EPSILON;
+  sp.lift = vec3(0.0);
   sp.basis.t = q.t;
   sp.basis.b = q.b;
   sp.basis.n = q.n;

@@ -103,6 +103,65 @@ TEST(PathTracerAnalytic, ViewUnderTheShadingNormalIsShadedWithTheFacetNormal) {
   EXPECT_NEAR(radiance_along({-1.0f, 0.0f, -0.3f}), shading, 1e-5f * shading);  // above it
 }
 
+// Hanika's shadow-terminator lift (terminator_lift, core/shading/surface_eval.h) of a triangle
+// inscribed in a sphere, with the sphere's normals at its vertices. At the middle of an edge whose
+// normals are theta apart, the point is moved onto the two vertices' tangent planes and the two
+// averaged: (R/2)(1 - cos theta) along (n0 + n1)/2, from R cos(theta/2) to
+// R cos(theta/2) (1 + sin^2(theta/2)) from the centre: outside the sphere by about as much as it
+// was inside (the Phong-tessellation overshoot that lifts shadow rays past the terminator).
+// Inside the triangle it moves off the facet toward the sphere's side; the vertices, and every
+// point of a flat-shaded triangle, stay where they are.
+TEST(TerminatorLift, MovesAFacetOntoItsVerticesTangentPlanes) {
+  const vec3 centre(0.2f, -0.1f, -3.0f);
+  const float radius = 3.5f;
+  vec3 v[3], n[3];
+  const vec2 at[3] = {{-1.0f, -0.8f}, {1.2f, -0.5f}, {0.1f, 1.1f}};
+  for (int i = 0; i < 3; ++i) {
+    n[i] = glm::normalize(vec3(at[i].x, at[i].y, 0.0f) - centre);
+    v[i] = centre + radius * n[i];
+  }
+  const vec3 mid = 0.5f * (v[0] + v[1]);
+  const vec3 lift = terminator_lift(v[0], v[1], v[2], n[0], n[1], n[2], mid, vec2(0.5f, 0.0f));
+  const float cos_theta = glm::dot(n[0], n[1]);
+  const vec3 expected = 0.5f * radius * (1.0f - cos_theta) * 0.5f * (n[0] + n[1]);
+  EXPECT_LT(glm::length(lift - expected), 1e-5f * radius);
+  const float h = 0.5f * std::acos(cos_theta), sin_h = std::sin(h);
+  EXPECT_NEAR(glm::length(mid + lift - centre), radius * std::cos(h) * (1.0f + sin_h * sin_h), 1e-5f * radius);
+  EXPECT_GT(glm::length(mid + lift - centre), radius);
+
+  const vec3 facet = glm::normalize(glm::cross(v[1] - v[0], v[2] - v[0]));
+  for (vec2 b : {vec2(1.0f / 3.0f), vec2(0.1f, 0.2f), vec2(0.6f, 0.3f), vec2(0.45f, 0.05f)}) {
+    const vec3 p = (1.0f - b.x - b.y) * v[0] + b.x * v[1] + b.y * v[2];
+    EXPECT_GT(glm::dot(terminator_lift(v[0], v[1], v[2], n[0], n[1], n[2], p, b), facet), 0.01f);
+    EXPECT_LT(glm::length(terminator_lift(v[0], v[1], v[2], facet, facet, facet, p, b)), 1e-6f);
+  }
+  EXPECT_EQ(terminator_lift(v[0], v[1], v[2], n[0], n[1], n[2], v[0], vec2(0.0f)), vec3(0.0f));
+}
+
+// A square facet whose vertex normals lean outward like a dome's, under a directional light just
+// below the facet's plane but above the shading normal at the facet's edge toward it: the smooth
+// surface sees the light, and the shadow ray from the lifted point decides (no occluder: lit),
+// as Cycles' shadow-terminator offset does; with flat normals the same light would leak through
+// the surface and stays dark, and light under the shading normal stays dark too.
+TEST(PathTracerAnalytic, LightUnderTheFacetButAboveTheSmoothSurfaceReachesIt) {
+  const float albedo = 0.5f, irradiance = 2.0f;
+  auto scene_with = [&](bool dome, vec3 travel) {
+    Scene scene = test::lambert_plane(albedo, 1.0f, 5.0f, 1.0f);
+    if (dome)
+      for (size_t i = 0; i < scene.normals.size(); ++i) scene.normals[i] = glm::normalize(scene.positions[i] + vec3(0, 0, 2));
+    scene.lights.push_back(light(LightType::Directional, vec3(0), travel, irradiance));
+    return scene;
+  };
+  const vec3 toward_plus_x = glm::normalize(vec3(-1.0f, 0.0f, 0.05f));  // travelling: from +x, slightly from below
+  Prepared dome(scene_with(true, toward_plus_x));
+  const float lit = dome.radiance_at(0.9f, 0.0f).x;
+  EXPECT_GT(lit, 0.2f * albedo / kPi * irradiance);
+  EXPECT_LT(lit, albedo / kPi * irradiance);
+  Prepared flat(scene_with(false, toward_plus_x));
+  EXPECT_EQ(flat.radiance_at(0.9f, 0.0f).x, 0.0f);
+  EXPECT_EQ(dome.radiance_at(-0.9f, 0.0f).x, 0.0f);  // the far edge's shading normal faces away
+}
+
 TEST(PathTracerAnalytic, SpotLightFollowsTheGltfConeFalloff) {
   const float albedo = 0.5f, intensity = 4.0f, h = 2.0f;
   Scene scene = test::lambert_plane(albedo, 50.0f, 5.0f, 1.0f);

@@ -15,13 +15,13 @@ namespace {
 
 // The pixel's averages exactly as PathTracer::render writes them from its sums.
 void write_pixel(const glsl::PathTraceTexel& t, float inv_spp, int x, int y, FrameOutput& frame) {
-  frame.direct.set_rgb(x, y, t.direct * inv_spp);
-  frame.indirect.set_rgb(x, y, t.indirect * inv_spp);
-  frame.color.set_rgb(x, y, (t.direct + t.indirect) * inv_spp);
-  frame.albedo.set_rgb(x, y, t.albedo * inv_spp);
-  vec3 n = t.normal;
-  frame.normal.set_rgb(x, y, glm::length(n) > 0.0f ? glm::normalize(n) : n);
-  frame.depth.at(x, y, 0) = t.depth * inv_spp;
+  PathSample sum;
+  sum.direct = t.direct;
+  sum.indirect = t.indirect;
+  sum.albedo = t.albedo;
+  sum.normal = t.normal;
+  sum.depth = t.depth;
+  write_path_means(sum, inv_spp, x, y, frame);
   frame.counters.primary_rays += t.primary_rays;
   frame.counters.shadow_rays += t.shadow_rays;
   frame.counters.bounce_rays += t.bounce_rays;

@@ -36,18 +36,23 @@ void trace_path_batch(const RenderContext& ctx, const PathConfig& cfg, RayBatchA
   bool* occluded = scratch.occluded.get();
   scratch.blocked.resize(count);
 
+  // The rays of the paths in `active` that asked for one (the camera's or a bounce's), each hit
+  // handed to its path by `on_hit`; `active` is then the paths still live.
+  auto intersect_stage = [&](auto&& on_hit) {
+    gather_rays(paths, active, PATH_RAY_BOUNCE, false, traced, scratch.rays);
+    scratch.hits.resize(traced.size());
+    ctx.accel.intersect(scratch.rays.data(), traced.size(), scratch.hits.data(), api);
+    active.clear();
+    for (size_t j = 0; j < traced.size(); ++j) {
+      PathState& st = paths[traced[j]];
+      on_hit(st, to_bvh_hit(scratch.hits[j]));
+      if (st.flags & PATH_ACTIVE) active.push_back(traced[j]);
+    }
+  };
+
   active.resize(count);
   for (size_t i = 0; i < count; ++i) active[i] = uint32_t(i);
-  // The camera rays.
-  gather_rays(paths, active, PATH_RAY_BOUNCE, false, traced, scratch.rays);
-  scratch.hits.resize(traced.size());
-  ctx.accel.intersect(scratch.rays.data(), traced.size(), scratch.hits.data(), api);
-  active.clear();
-  for (size_t j = 0; j < traced.size(); ++j) {
-    PathState& st = paths[traced[j]];
-    path_first_hit(scene, st, to_bvh_hit(scratch.hits[j]), cfg);
-    if (st.flags & PATH_ACTIVE) active.push_back(traced[j]);
-  }
+  intersect_stage([&](PathState& st, const BvhHit& hit) { path_first_hit(scene, st, hit, cfg); });
 
   while (!active.empty()) {
     for (uint32_t i : active) path_shade(scene, lights, paths[i], cfg);
@@ -59,15 +64,7 @@ void trace_path_batch(const RenderContext& ctx, const PathConfig& cfg, RayBatchA
     for (size_t j = 0; j < traced.size(); ++j) scratch.blocked[traced[j]] = occluded[j];
     for (uint32_t i : active) path_shadow_result(paths[i], scratch.blocked[i] != 0);
 
-    gather_rays(paths, active, PATH_RAY_BOUNCE, false, traced, scratch.rays);
-    scratch.hits.resize(traced.size());
-    ctx.accel.intersect(scratch.rays.data(), traced.size(), scratch.hits.data(), api);
-    active.clear();
-    for (size_t j = 0; j < traced.size(); ++j) {
-      PathState& st = paths[traced[j]];
-      path_bounce_hit(scene, lights, st, to_bvh_hit(scratch.hits[j]), cfg);
-      if (st.flags & PATH_ACTIVE) active.push_back(traced[j]);
-    }
+    intersect_stage([&](PathState& st, const BvhHit& hit) { path_bounce_hit(scene, lights, st, hit, cfg); });
   }
 }
 

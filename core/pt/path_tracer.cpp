@@ -19,6 +19,16 @@ PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, 
   return out;
 }
 
+void write_path_means(const PathSample& sum, float inv_spp, int x, int y, FrameOutput& frame) {
+  frame.direct.set_rgb(x, y, sum.direct * inv_spp);
+  frame.indirect.set_rgb(x, y, sum.indirect * inv_spp);
+  frame.color.set_rgb(x, y, (sum.direct + sum.indirect) * inv_spp);
+  frame.albedo.set_rgb(x, y, sum.albedo * inv_spp);
+  vec3 n = sum.normal;
+  frame.normal.set_rgb(x, y, glm::length(n) > 0.0f ? glm::normalize(n) : n);
+  frame.depth.at(x, y, 0) = sum.depth * inv_spp;
+}
+
 PathTracer::PathTracer(const PathTracerParams& params) : params_(params) {
   if (params_.max_bounces < 0) throw Error("max_bounces must be >= 0 (got " + std::to_string(params_.max_bounces) + ")");
   if (params_.max_bounces > 1024) throw Error("max_bounces must be <= 1024");
@@ -49,17 +59,9 @@ FrameOutput PathTracer::render(const RenderContext& ctx, StageTimer& timer) {
         sum.normal += p.normal;
         sum.depth += p.depth;
       });
-      for (int pixel = 0; pixel < tile.pixels(); ++pixel) {
-        const PathSample& sum = sums[size_t(pixel)];
-        const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
-        frame.direct.set_rgb(x, y, sum.direct * inv_spp);
-        frame.indirect.set_rgb(x, y, sum.indirect * inv_spp);
-        frame.color.set_rgb(x, y, (sum.direct + sum.indirect) * inv_spp);
-        frame.albedo.set_rgb(x, y, sum.albedo * inv_spp);
-        vec3 n = sum.normal;
-        frame.normal.set_rgb(x, y, glm::length(n) > 0.0f ? glm::normalize(n) : n);
-        frame.depth.at(x, y, 0) = sum.depth * inv_spp;
-      }
+      for (int pixel = 0; pixel < tile.pixels(); ++pixel)
+        write_path_means(sums[size_t(pixel)], inv_spp, tile.x0 + pixel % tile.width(), tile.y0 + pixel / tile.width(),
+                         frame);
     });
   });
   return frame;

@@ -33,6 +33,10 @@ struct PathTracerParams {
 PathSample trace_path(const RenderContext& context, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
                       RayCounters& counters, Surface* first_hit = nullptr);
 
+// Pixel (x, y) of `frame` from the sums of its samples' PathSamples (inv_spp = 1 / spp): the
+// layers' means and the normalised normal. The GPU's passes write their sums through it too.
+void write_path_means(const PathSample& sum, float inv_spp, int x, int y, FrameOutput& frame);
+
 class PathTracer final : public Method {
  public:
   explicit PathTracer(const PathTracerParams& params);

@@ -53,11 +53,17 @@ out, methods = sys.argv[1], sys.argv[2].split()
 pt = collections.defaultdict(list)
 for line in open(out + '/pt.txt'):
     b, name, ms = line.split()
-    pt[(name.split('/')[0], b)].append(float(ms))
+    # The benchmark's name with its arguments (BM_PathTraceStaircase/1024), without Google
+    # Benchmark's settings (/min_time:4.000, /manual_time, /iterations:7).
+    key = '/'.join(p for p in name.split('/') if ':' not in p and p != 'manual_time')
+    pt[(key, b)].append(float(ms))
 print(f"{'benchmark':28s} {'before':>9s} {'after':>9s} {'after/before':>12s}")
 for name in sorted({n for n, _ in pt}):
-    a, z = statistics.median(pt[(name, 'before')]), statistics.median(pt[(name, 'after')])
-    print(f"{name:28s} {a:9.1f} {z:9.1f} {z / a:12.3f}")
+    # A benchmark one build lacks (or names with other arguments) shows as "-".
+    a, z = (statistics.median(pt[(name, s)]) if pt.get((name, s)) else None for s in ('before', 'after'))
+    show = lambda v: f"{v:9.1f}" if v is not None else f"{'-':>9s}"
+    ratio = f"{z / a:12.3f}" if a and z is not None else f"{'-':>12s}"
+    print(f"{name:28s} {show(a)} {show(z)} {ratio}")
 skip = {'load', 'accel_build', 'write'}
 st = collections.defaultdict(list)
 for f in glob.glob(out + '/*.json'):

@@ -7,6 +7,7 @@
 #include "core/render/camera.h"
 #include "gpu/sample_chunks.h"
 #include "core/render/frame_layout.h"
+#include "core/manylight/many_light_method.h"
 
 namespace sst::gpu {
 namespace {
@@ -15,17 +16,16 @@ using glsl::ManyLightPush;
 
 // ManyLightMethod::render's per-pixel epilogue, from the sums.
 void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutput& frame, ManyLightPassOutput& out) {
-  float inv = 1.0f / float(spp);
-  vec3 mean = t.indirect * inv;
-  frame.direct.set_rgb(x, y, t.direct * inv);
-  frame.indirect.set_rgb(x, y, mean);
-  frame.color.set_rgb(x, y, (t.direct + t.indirect) * inv);
-  frame.albedo.set_rgb(x, y, t.albedo * inv);
-  frame.normal.set_rgb(x, y, glm::length(t.normal) > 0.0f ? glm::normalize(t.normal) : t.normal);
-  frame.depth.at(x, y, 0) = t.depth * inv;
-  vec3 var = spp > 1 ? glm::max(t.indirect2 * inv - mean * mean, vec3(0.0f)) / float(spp - 1) : vec3(0.0f);
-  out.variance.set_rgb(x, y, var);
-  out.traversal_depth.at(x, y, 0) = t.indirect_samples ? float(t.nodes) / float(t.indirect_samples) : 0.0f;
+  ManyLightPixelSums sums;
+  sums.direct = t.direct;
+  sums.indirect = t.indirect;
+  sums.albedo = t.albedo;
+  sums.normal = t.normal;
+  sums.depth = t.depth;
+  sums.indirect2 = t.indirect2;
+  sums.nodes = t.nodes;
+  sums.indirect_samples = t.indirect_samples;
+  write_many_light_pixel(sums, spp, x, y, frame, out.variance, out.traversal_depth);
   frame.counters.primary_rays += t.primary_rays;
   frame.counters.shadow_rays += t.shadow_rays;
   frame.counters.bounce_rays += t.bounce_rays;

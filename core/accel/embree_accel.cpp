@@ -169,6 +169,18 @@ void set_packet_ray(RTCRayNt<N>& packet, int lane, const Ray& ray) {
   packet.flags[lane] = 0;
 }
 
+// The packet of rays[first ..]: at most N rays, the last one repeated in the lanes past `count`,
+// which `valid` marks off. Returns how many lanes hold rays.
+template <int N>
+int fill_packet(RTCRayNt<N>& packet, int* valid, const Ray* rays, size_t first, size_t count) {
+  const int lanes = int(std::min<size_t>(N, count - first));
+  for (int i = 0; i < N; ++i) {
+    valid[i] = i < lanes ? -1 : 0;
+    set_packet_ray(packet, i, rays[first + size_t(std::min(i, lanes - 1))]);
+  }
+  return lanes;
+}
+
 // Packets of N rays through rtcIntersectN / rtcOccludedN (N = 8 or 16); the last one partly valid.
 template <int N>
 void intersect_packets(RTCScene scene, const Ray* rays, size_t count, Hit* hits) {
@@ -177,10 +189,8 @@ void intersect_packets(RTCScene scene, const Ray* rays, size_t count, Hit* hits)
   for (size_t first = 0; first < count; first += N) {
     alignas(64) RTCRayHitNt<N> packet;
     alignas(64) int valid[N];
-    const int lanes = int(std::min<size_t>(N, count - first));
+    const int lanes = fill_packet<N>(packet.ray, valid, rays, first, count);
     for (int i = 0; i < N; ++i) {
-      valid[i] = i < lanes ? -1 : 0;
-      set_packet_ray(packet.ray, i, rays[first + size_t(std::min(i, lanes - 1))]);
       packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -206,11 +216,7 @@ void occluded_packets(RTCScene scene, const Ray* rays, size_t count, bool* occlu
   for (size_t first = 0; first < count; first += N) {
     alignas(64) RTCRayNt<N> packet;
     alignas(64) int valid[N];
-    const int lanes = int(std::min<size_t>(N, count - first));
-    for (int i = 0; i < N; ++i) {
-      valid[i] = i < lanes ? -1 : 0;
-      set_packet_ray(packet, i, rays[first + size_t(std::min(i, lanes - 1))]);
-    }
+    const int lanes = fill_packet<N>(packet, valid, rays, first, count);
     if constexpr (N == 8)
       rtcOccluded8(valid, scene, &context, reinterpret_cast<RTCRay8*>(&packet));
     else

@@ -22,6 +22,24 @@ struct Accumulators {
 
 }  // namespace
 
+void write_many_light_pixel(const ManyLightPixelSums& sums, int spp, int x, int y, FrameOutput& frame, Image& variance,
+                            Image& traversal_depth) {
+  const float inv = 1.0f / float(spp);
+  PathSample path;
+  path.direct = sums.direct;
+  path.indirect = sums.indirect;
+  path.albedo = sums.albedo;
+  path.normal = sums.normal;
+  path.depth = sums.depth;
+  write_path_means(path, inv, x, y, frame);
+  // Variance of the pixel mean (sample variance / spp), for per-pixel z-tests.
+  const vec3 mean = sums.indirect * inv;
+  vec3 var = spp > 1 ? glm::max(sums.indirect2 * inv - mean * mean, vec3(0.0f)) / float(spp - 1) : vec3(0.0f);
+  variance.set_rgb(x, y, var);
+  traversal_depth.at(x, y, 0) =
+      sums.indirect_samples ? float(sums.nodes) / float(sums.indirect_samples) : 0.0f;
+}
+
 ManyLightMethod::ManyLightMethod(VplParams vpl_params, nlohmann::json params, std::unique_ptr<IndirectSampler> sampler)
     : vpl_params_(vpl_params), params_(std::move(params)), sampler_(std::move(sampler)) {
   validate(vpl_params_);
@@ -46,22 +64,16 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
   const PathConfig direct_only = path_config(own_direct ? -1 : 0, 0, ctx.options.diffuse_only);
   Accumulators acc;
   const int spp = ctx.options.spp;
-  // One pixel's sums over its samples.
-  struct PixelSums {
-    vec3 direct{0.0f}, indirect{0.0f}, indirect2{0.0f}, albedo{0.0f}, normal{0.0f};
-    float z = 0.0f;
-    uint64_t nodes = 0, samples = 0;
-  };
   timer.time("sampling", [&] {
     for_each_tile(ctx.width, ctx.height, ctx.quiet, "sampling", frame.counters, [&](const Tile& tile, RayCounters& rc) {
-      std::vector<PixelSums> sums(size_t(tile.pixels()));
+      std::vector<ManyLightPixelSums> sums(size_t(tile.pixels()));
       std::vector<uint32_t> depths;
       // The direct light of the tile's camera paths (in batches), then each path's indirect
       // estimate at its first hit, with the sampler where the path left it.
       trace_tile_paths(ctx, direct_only, tile, rc, [&](int pixel, int, const Ray& ray, PathState& path) {
         const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
         PathSample& d = path.result;
-        PixelSums& sum = sums[size_t(pixel)];
+        ManyLightPixelSums& sum = sums[size_t(pixel)];
         vec3 value(0.0f);
         if (d.depth > 0.0f) {
           ShadingPoint sp = shading_point(path.first_hit, ray.direction, ctx.options.diffuse_only, x, y);
@@ -69,7 +81,7 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
           IndirectEstimate e = sampler_->estimate(sp, path.ps);
           rc.shadow_rays += e.shadow_rays;
           sum.nodes += e.nodes_visited;
-          ++sum.samples;
+          ++sum.indirect_samples;
           depths.push_back(e.nodes_visited);
           value = e.value;
         }
@@ -82,26 +94,14 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
         sum.indirect2 += value * value;
         sum.albedo += d.albedo;
         sum.normal += d.normal;
-        sum.z += d.depth;
+        sum.depth += d.depth;
       });
-      float inv = 1.0f / float(spp);
       for (int pixel = 0; pixel < tile.pixels(); ++pixel) {
-        const PixelSums& sum = sums[size_t(pixel)];
-        const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
-        vec3 mean = sum.indirect * inv;
-        frame.direct.set_rgb(x, y, sum.direct * inv);
-        frame.indirect.set_rgb(x, y, mean);
-        frame.color.set_rgb(x, y, (sum.direct + sum.indirect) * inv);
-        frame.albedo.set_rgb(x, y, sum.albedo * inv);
-        frame.normal.set_rgb(x, y, glm::length(sum.normal) > 0.0f ? glm::normalize(sum.normal) : sum.normal);
-        frame.depth.at(x, y, 0) = sum.z * inv;
-        // Variance of the pixel mean (sample variance / spp), for per-pixel z-tests.
-        vec3 var =
-            spp > 1 ? glm::max(sum.indirect2 * inv - mean * mean, vec3(0.0f)) / float(spp - 1) : vec3(0.0f);
-        variance.set_rgb(x, y, var);
-        depth.at(x, y, 0) = sum.samples ? float(sum.nodes) / float(sum.samples) : 0.0f;
+        const ManyLightPixelSums& sum = sums[size_t(pixel)];
+        write_many_light_pixel(sum, spp, tile.x0 + pixel % tile.width(), tile.y0 + pixel / tile.width(), frame,
+                               variance, depth);
         acc.nodes += sum.nodes;
-        acc.indirect_samples += sum.samples;
+        acc.indirect_samples += sum.indirect_samples;
       }
       std::lock_guard lock(acc.histogram_mutex);
       for (uint32_t v : depths) ++acc.depth_histogram[std::min<uint32_t>(v, 64)];

@@ -30,6 +30,21 @@ class ManyLightMethod final : public Method {
   std::unique_ptr<IndirectSampler> sampler_;
 };
 
+// One pixel's sums over its samples: the direct pass's PathSamples (`path`, its `indirect` the
+// sampler's estimates) and what the extra layers need. ManyLightMethod::render fills them on the
+// CPU, ManyLightTexel holds them on the GPU.
+struct ManyLightPixelSums {
+  vec3 direct{0.0f}, indirect{0.0f}, albedo{0.0f}, normal{0.0f};
+  float depth = 0.0f;
+  vec3 indirect2{0.0f};           // the estimates squared
+  uint64_t nodes = 0, indirect_samples = 0;
+};
+
+// Pixel (x, y) from its sums of `spp` samples: the layers' means (write_path_means), the variance
+// of the indirect mean into `variance` and the nodes per indirect sample into `traversal_depth`.
+void write_many_light_pixel(const ManyLightPixelSums& sums, int spp, int x, int y, FrameOutput& frame, Image& variance,
+                            Image& traversal_depth);
+
 // The registry entry of each method of the list (many_light_methods.h): MethodInfo
 // <name>_method_info(), defined in core/manylight/<name>/<name>_method.cpp.
 #define ML_DECLARE_METHOD_INFO(name, id) MethodInfo name##_method_info();

@@ -34,7 +34,6 @@ void trace_path_batch(const RenderContext& ctx, const PathConfig& cfg, RayBatchA
     scratch.occluded_size = count;
   }
   bool* occluded = scratch.occluded.get();
-  scratch.blocked.resize(count);
 
   // The rays of the paths in `active` that asked for one (the camera's or a bounce's), each hit
   // handed to its path by `on_hit`; `active` is then the paths still live.
@@ -59,10 +58,10 @@ void trace_path_batch(const RenderContext& ctx, const PathConfig& cfg, RayBatchA
 
     gather_rays(paths, active, PATH_RAY_SHADOW, true, traced, scratch.rays);
     ctx.accel.occluded(scratch.rays.data(), traced.size(), occluded, api);
-    // Every live path takes its light sample's share: those without a shadow ray as unoccluded.
-    for (uint32_t i : active) scratch.blocked[i] = 0;
-    for (size_t j = 0; j < traced.size(); ++j) scratch.blocked[traced[j]] = occluded[j];
-    for (uint32_t i : active) path_shadow_result(paths[i], scratch.blocked[i] != 0);
+    // Every live path takes its light sample's share: those with a shadow ray by its answer, then
+    // those left waiting (PATH_NEE without a ray) as unoccluded.
+    for (size_t j = 0; j < traced.size(); ++j) path_shadow_result(paths[traced[j]], occluded[j]);
+    for (uint32_t i : active) path_shadow_result(paths[i], false);
 
     intersect_stage([&](PathState& st, const BvhHit& hit) { path_bounce_hit(scene, lights, st, hit, cfg); });
   }

@@ -22,7 +22,6 @@ struct PathBatchScratch {
   std::vector<Hit> hits;
   std::unique_ptr<bool[]> occluded;  // a shadow-ray batch's answers (EmbreeAccel wants bool*)
   size_t occluded_size = 0;
-  std::vector<uint8_t> blocked;  // ... per path of the batch
 };
 
 // Traces `count` paths, each ready for its camera ray (path_begin), to their ends: every stage of

@@ -74,9 +74,7 @@ void main() {
   if (push.view.sample_offset != 0u || !first_slice) acc = texels[pixel];
   for (uint k = 0u; k < push.view.spp; ++k) {
     PixelSampler ps = pixel_sampler(push.view.seed, pixel, push.view.sample_offset + k);
-    vec2 jitter = pixel_sampler_get2d(ps);
-    precise float px = float(xy.x) + jitter.x, py = float(xy.y) + jitter.y;
-    vec3 dir = camera_direction(push.view, px, py);
+    vec3 dir = camera_sample_direction(push.view, xy.x, xy.y, ps);
     PathCounters counters = path_counters();
     Surface hit;
     bool has_hit;

@@ -30,23 +30,6 @@ layout(push_constant) uniform Push { PathTraceParams params; };
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-PathTraceTexel empty_texel() {
-  PathTraceTexel t;
-  t.direct = vec3(0.0);
-  t.depth = 0.0;
-  t.indirect = vec3(0.0);
-  t.samples = 0u;
-  t.albedo = vec3(0.0);
-  t.primary_rays = 0u;
-  t.normal = vec3(0.0);
-  t.shadow_rays = 0u;
-  t.bounce_rays = 0u;
-  t.nonfinite_samples = 0u;
-  t.pad0 = 0u;
-  t.pad1 = 0u;
-  return t;
-}
-
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
   // One local copy of the view (its name too) keeps glslang's precise propagation small
@@ -54,37 +37,15 @@ void main() {
   ViewParams pixel_view = params.view;
   if (xy.x >= pixel_view.width || xy.y >= pixel_view.height) return;
   uint pixel = xy.y * pixel_view.width + xy.x;
-  PathTraceTexel acc = empty_texel();
+  PathTraceTexel acc = path_texel_empty();
   if (pixel_view.sample_offset != 0u) acc = texels[pixel];
+  PathConfig cfg = path_config(params.max_bounces, params.rr_min_bounces, params.diffuse_only != 0u);
   for (uint i = 0u; i < pixel_view.spp; ++i) {
     PixelSampler ps = pixel_sampler(pixel_view.seed, pixel, pixel_view.sample_offset + i);
-    vec2 jitter = pixel_sampler_get2d(ps);
-    precise float px = float(xy.x) + jitter.x, py = float(xy.y) + jitter.y;
-    vec3 dir = camera_direction(pixel_view, px, py);
-    PathCounters counters = path_counters();
-    Surface first_hit;
-    bool hit;
-    PathSample p = trace_path(pixel_view.eye, dir, params.max_bounces, params.rr_min_bounces, params.diffuse_only != 0u,
-                              ps, counters, first_hit, hit);
-    acc.primary_rays += counters.primary_rays;
-    acc.shadow_rays += counters.shadow_rays;
-    acc.bounce_rays += counters.bounce_rays;
-    ++acc.samples;
-    // A NaN or Inf sample is a bug to find, not a pixel to show: drop and count it (as the CPU).
-    if (!is_finite3(p.direct) || !is_finite3(p.indirect)) {
-      ++acc.nonfinite_samples;
-      continue;
-    }
-    precise vec3 direct = acc.direct + p.direct;
-    precise vec3 indirect = acc.indirect + p.indirect;
-    precise vec3 albedo = acc.albedo + p.albedo;
-    precise vec3 normal = acc.normal + p.normal;
-    precise float depth = acc.depth + p.depth;
-    acc.direct = direct;
-    acc.indirect = indirect;
-    acc.albedo = albedo;
-    acc.normal = normal;
-    acc.depth = depth;
+    vec3 dir = camera_sample_direction(pixel_view, xy.x, xy.y, ps);
+    PathState st = path_begin(pixel_view.eye, dir, ps);
+    trace_path_state(st, cfg);
+    path_texel_add(acc, st.counters, st.result);
   }
   texels[pixel] = acc;
 }

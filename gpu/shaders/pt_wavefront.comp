@@ -46,11 +46,8 @@ void main() {
 #if PT_WAVE_STAGE == 0
   // One local copy of the view keeps glslang's precise propagation small (as pt.comp).
   ViewParams pixel_view = wave.pt.view;
-  uint x = pixel % pixel_view.width, y = pixel / pixel_view.width;
   PixelSampler ps = pixel_sampler(pixel_view.seed, pixel, pixel_view.sample_offset);
-  vec2 jitter = pixel_sampler_get2d(ps);
-  precise float px = float(x) + jitter.x, py = float(y) + jitter.y;
-  vec3 dir = camera_direction(pixel_view, px, py);
+  vec3 dir = camera_sample_direction(pixel_view, pixel % pixel_view.width, pixel / pixel_view.width, ps);
   PathState st = path_begin(pixel_view.eye, dir, ps);
   BvhHit h;
   ray_closest_hit_into(st.origin, st.dir, h);
@@ -78,41 +75,9 @@ void main() {
   states[slot] = st;
 #else
   PathState st = states[slot];
-  PathTraceTexel acc = texels[pixel];
-  if (wave.pt.view.sample_offset == 0u) {
-    acc.direct = vec3(0.0);
-    acc.depth = 0.0;
-    acc.indirect = vec3(0.0);
-    acc.samples = 0u;
-    acc.albedo = vec3(0.0);
-    acc.primary_rays = 0u;
-    acc.normal = vec3(0.0);
-    acc.shadow_rays = 0u;
-    acc.bounce_rays = 0u;
-    acc.nonfinite_samples = 0u;
-    acc.pad0 = 0u;
-    acc.pad1 = 0u;
-  }
-  acc.primary_rays += st.counters.primary_rays;
-  acc.shadow_rays += st.counters.shadow_rays;
-  acc.bounce_rays += st.counters.bounce_rays;
-  ++acc.samples;
-  // A NaN or Inf sample is a bug to find, not a pixel to show: drop and count it (as the CPU).
-  if (!is_finite3(st.result.direct) || !is_finite3(st.result.indirect)) {
-    ++acc.nonfinite_samples;
-  } else {
-    PathSample p = st.result;
-    precise vec3 direct = acc.direct + p.direct;
-    precise vec3 indirect = acc.indirect + p.indirect;
-    precise vec3 albedo = acc.albedo + p.albedo;
-    precise vec3 normal = acc.normal + p.normal;
-    precise float depth = acc.depth + p.depth;
-    acc.direct = direct;
-    acc.indirect = indirect;
-    acc.albedo = albedo;
-    acc.normal = normal;
-    acc.depth = depth;
-  }
+  PathTraceTexel acc = path_texel_empty();
+  if (wave.pt.view.sample_offset != 0u) acc = texels[pixel];
+  path_texel_add(acc, st.counters, st.result);
   texels[pixel] = acc;
 #endif
 }

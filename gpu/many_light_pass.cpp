@@ -17,11 +17,11 @@ using glsl::ManyLightPush;
 // ManyLightMethod::render's per-pixel epilogue, from the sums.
 void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutput& frame, ManyLightPassOutput& out) {
   ManyLightPixelSums sums;
-  sums.direct = t.direct;
-  sums.indirect = t.indirect;
-  sums.albedo = t.albedo;
-  sums.normal = t.normal;
-  sums.depth = t.depth;
+  sums.path.direct = t.direct;
+  sums.path.indirect = t.indirect;
+  sums.path.albedo = t.albedo;
+  sums.path.normal = t.normal;
+  sums.path.depth = t.depth;
   sums.indirect2 = t.indirect2;
   sums.nodes = t.nodes;
   sums.indirect_samples = t.indirect_samples;

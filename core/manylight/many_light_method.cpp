@@ -25,15 +25,9 @@ struct Accumulators {
 void write_many_light_pixel(const ManyLightPixelSums& sums, int spp, int x, int y, FrameOutput& frame, Image& variance,
                             Image& traversal_depth) {
   const float inv = 1.0f / float(spp);
-  PathSample path;
-  path.direct = sums.direct;
-  path.indirect = sums.indirect;
-  path.albedo = sums.albedo;
-  path.normal = sums.normal;
-  path.depth = sums.depth;
-  write_path_means(path, inv, x, y, frame);
+  write_path_means(sums.path, inv, x, y, frame);
   // Variance of the pixel mean (sample variance / spp), for per-pixel z-tests.
-  const vec3 mean = sums.indirect * inv;
+  const vec3 mean = sums.path.indirect * inv;
   vec3 var = spp > 1 ? glm::max(sums.indirect2 * inv - mean * mean, vec3(0.0f)) / float(spp - 1) : vec3(0.0f);
   variance.set_rgb(x, y, var);
   traversal_depth.at(x, y, 0) =
@@ -89,12 +83,12 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
           ++rc.nonfinite_samples;
           return;
         }
-        sum.direct += d.direct;
-        sum.indirect += value;
+        sum.path.direct += d.direct;
+        sum.path.indirect += value;
         sum.indirect2 += value * value;
-        sum.albedo += d.albedo;
-        sum.normal += d.normal;
-        sum.depth += d.depth;
+        sum.path.albedo += d.albedo;
+        sum.path.normal += d.normal;
+        sum.path.depth += d.depth;
       });
       for (int pixel = 0; pixel < tile.pixels(); ++pixel) {
         const ManyLightPixelSums& sum = sums[size_t(pixel)];

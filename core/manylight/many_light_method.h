@@ -10,6 +10,7 @@
 
 #include "core/manylight/indirect_sampler.h"
 #include "core/manylight/many_light_methods.h"
+#include "core/pt/path_tracer.h"
 #include "core/render/method.h"
 #include "core/vpl/vpl_generator.h"
 
@@ -34,9 +35,8 @@ class ManyLightMethod final : public Method {
 // sampler's estimates) and what the extra layers need. ManyLightMethod::render fills them on the
 // CPU, ManyLightTexel holds them on the GPU.
 struct ManyLightPixelSums {
-  vec3 direct{0.0f}, indirect{0.0f}, albedo{0.0f}, normal{0.0f};
-  float depth = 0.0f;
-  vec3 indirect2{0.0f};           // the estimates squared
+  PathSample path;
+  vec3 indirect2{0.0f};  // the estimates squared
   uint64_t nodes = 0, indirect_samples = 0;
 };
 

@@ -26,14 +26,6 @@ double ms_since(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// light_tree.cpp's length_scale (D), with its error message.
-float length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const Bounds3* scene_bounds) {
-  if (params.sigma_max_relative_to == "vpl_bounds") return vpl_bounds.diagonal();
-  if (!scene_bounds || scene_bounds->empty())
-    throw Error("light tree: sigma_max_relative_to 'scene_bounds' needs the scene bounds, and none were given");
-  return scene_bounds->diagonal();
-}
-
 // Workgroups for `count` invocations, as (x, y) with x within Vulkan's guaranteed limit.
 std::pair<uint32_t, uint32_t> groups_for(uint32_t count) {
   uint32_t groups = std::max<uint32_t>(1, (count + kGroup - 1) / kGroup);
@@ -139,7 +131,7 @@ void GpuLightTreeBuilder::build_perfect(const GpuBuffer& vpls, const Sorted& sor
   nodes->download(std::span<LightNode>(tree.nodes));
 }
 
-LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
+LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* lengths,
                                      LightTreeBuildStats* stats_out, double* gpu_ms) {
   validate(params);
   if (params.tree != "radix" && params.tree != "perfect")
@@ -157,7 +149,7 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
   tree.vpls = vpls;
   tree.vpl_count = n;
   tree.vpl_bounds = bounds;
-  tree.length_scale = length_scale(params, bounds, scene_bounds);
+  tree.length_scale = tree_length_scale(params, bounds, lengths);
   tree.v_min = params.v_min;
   tree.sigma_max_abs = params.sigma_max * tree.length_scale;
   tree.root = kNoNode;  // both builders' empty tree
@@ -191,8 +183,8 @@ LightTree GpuLightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& 
 }
 
 LightTree build_light_tree_gpu(const VulkanContext& context, const VplSet& vpls, const LightTreeParams& params,
-                               const Bounds3* scene_bounds, LightTreeBuildStats* stats, double* gpu_ms) {
-  return GpuLightTreeBuilder(context).build(vpls, params, scene_bounds, stats, gpu_ms);
+                               const TreeLengths* lengths, LightTreeBuildStats* stats, double* gpu_ms) {
+  return GpuLightTreeBuilder(context).build(vpls, params, lengths, stats, gpu_ms);
 }
 
 }  // namespace sst::gpu

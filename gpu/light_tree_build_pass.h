@@ -35,10 +35,10 @@ class GpuLightTreeBuilder {
   ~GpuLightTreeBuilder();
 
   // What build_light_tree_gpu does (see there).
-  LightTree build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,
+  LightTree build(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* lengths = nullptr,
                   LightTreeBuildStats* stats = nullptr, double* gpu_ms = nullptr);
   // The tree's leaves are the VPLs (LightTree::vpls): a temporary set would leave it dangling.
-  LightTree build(VplSet&&, const LightTreeParams&, const Bounds3* = nullptr, LightTreeBuildStats* = nullptr,
+  LightTree build(VplSet&&, const LightTreeParams&, const TreeLengths* = nullptr, LightTreeBuildStats* = nullptr,
                   double* = nullptr) = delete;
 
  private:
@@ -63,7 +63,7 @@ class GpuLightTreeBuilder {
 // is 0, as on the CPU); total_ms is the wall time of the whole call, uploads and downloads included. `gpu_ms`
 // (optional): the GPU time of all passes.
 LightTree build_light_tree_gpu(const VulkanContext& context, const VplSet& vpls, const LightTreeParams& params,
-                               const Bounds3* scene_bounds = nullptr, LightTreeBuildStats* stats = nullptr,
+                               const TreeLengths* lengths = nullptr, LightTreeBuildStats* stats = nullptr,
                                double* gpu_ms = nullptr);
 
 }  // namespace sst::gpu

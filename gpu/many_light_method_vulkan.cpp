@@ -19,24 +19,27 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
 
   VplStats vpl_stats;
   double vpl_gpu_ms = 0.0;
+  const float view_distance = median_view_distance(ctx);
   VplSet vpls = timer.time("vpl_generation", [&] {
     return generate_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.scene, vpl_params,
-                             ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms);
+                             ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms, 0,
+                             view_emission_focus(ctx, view_distance, vpl_params.directional_focus));
   });
   if (!vpl_params.export_vpls.empty()) write_vpls_ply(vpl_params.export_vpls, vpls);
-  VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance};
+  VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth, view_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
+  frame.method_counters["view_distance"] = view_distance;
   // Radix and perfect trees are built on the GPU, agglomerative ones on the CPU. The builder's
   // shaders are compiled in stage shader_compile, like the sampling shader.
   auto on_gpu = [](const std::string& tree) { return tree == "radix" || tree == "perfect"; };
   std::unique_ptr<GpuLightTreeBuilder> tree_builder;
   if (on_gpu(params.value("tree", "")))
     tree_builder = timer.time("shader_compile", [&] { return std::make_unique<GpuLightTreeBuilder>(gpu.vulkan()); });
-  sampler.set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const Bounds3* scene_bounds,
+  sampler.set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const TreeLengths* lengths,
                                  LightTreeBuildStats* stats, std::string* built_on) {
-    if (!on_gpu(p.tree) || !tree_builder) return build_light_tree(v, p, scene_bounds, stats);
+    if (!on_gpu(p.tree) || !tree_builder) return build_light_tree(v, p, lengths, stats);
     *built_on = "gpu";
-    return tree_builder->build(v, p, scene_bounds, stats);
+    return tree_builder->build(v, p, lengths, stats);
   });
   sampler.prepare(lighting, timer, frame.method_counters);
   sampler.set_tree_builder({});
@@ -46,7 +49,8 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu); });
   ManyLightPassOutput out = timer.time("sampling", [&] {
     return render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
-                             ctx.options.diffuse_only, frame);
+                             ctx.options.diffuse_only, vpl_params.clamp_compensation ? vpl_params.vpl_max_bounces : 0,
+                             vpl_params.vpl_min_bounces, frame);
   });
 
   frame.extra_layers = {{"indirect_variance", out.variance}, {"traversal_depth", out.traversal_depth}};

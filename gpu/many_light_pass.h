@@ -30,9 +30,11 @@ struct ManyLightPassOutput {
 std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu);
 
 // Renders `spp` samples per pixel into `frame` (color, direct, indirect, albedo, normal, depth
-// and counters), which must be allocated at width x height.
+// and counters), which must be allocated at width x height. compensation_max_bounces and
+// compensation_rr_min_bounces: many_light_direct_config's (core/manylight/direct_pass.h).
 ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,
                                       const GpuManyLightInputs& inputs, const PinholeCamera& camera, uint32_t seed,
-                                      int spp, bool diffuse_only, FrameOutput& frame);
+                                      int spp, bool diffuse_only, int compensation_max_bounces,
+                                      int compensation_rr_min_bounces, FrameOutput& frame);
 
 }  // namespace sst::gpu

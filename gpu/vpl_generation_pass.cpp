@@ -104,7 +104,8 @@ uint64_t vpl_batch_paths(uint64_t remaining, uint64_t deposited, uint64_t traced
 
 VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene, const GpuBvh& bvh,
                          const GpuLights& lights, const Scene& scene, const VplParams& params, uint32_t seed,
-                         bool diffuse_only, VplStats* stats, double* gpu_ms, uint64_t max_batch_paths) {
+                         bool diffuse_only, VplStats* stats, double* gpu_ms, uint64_t max_batch_paths,
+                         const EmissionFocus& focus) {
   validate(params);
   auto start = std::chrono::steady_clock::now();
   VplStats local;
@@ -125,7 +126,7 @@ VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene
     uint64_t capacity = batch_capacity(context, max_bounces);
     if (max_batch_paths > 0) capacity = std::min(capacity, max_batch_paths);
     VplGenerationPush push{seed, 0, 0, uint32_t(max_bounces), uint32_t(params.vpl_min_bounces), diffuse_only ? 1u : 0u,
-                 scene_ray_epsilon(scene), 0};
+                 scene_ray_epsilon(scene), 0, focus.center, focus.radius};
     std::vector<PathRecord> records;
     while (g.vpls.size() < target && g.traced < max_paths) {
       uint64_t batch = vpl_batch_paths(target - g.vpls.size(), g.deposited, g.traced, params);
@@ -144,7 +145,7 @@ VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene
     }
   }
   finish(g, target, max_paths, max_bounces, st);
-  st.clamp_distance = vpl_clamp_distance(params.clamp_fraction, g.vpls, scene);
+  set_clamp(params, g.vpls, scene, st);
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return std::move(g.vpls);
 }

@@ -9,6 +9,7 @@
 
 #include "core/pt/path_tracer.h"
 #include "core/render/camera.h"
+#include "core/render/view_length.h"
 
 #include "core/gi10/gi10_cpu.h"
 
@@ -226,7 +227,7 @@ FrameOutput Gi10Renderer::render(const RenderContext& context, Gi10Executor& exe
     executor.allocate(sizes_);
     started_ = true;
     frame_ = 0;
-    visible_diagonal_ = 0.0f;
+    view_length_ = 0.0f;
     // Warm-up: the caches fill over frames, at the first view, with fresh random numbers each frame.
     StageTimer discard;
     RenderOptions options = context.options;
@@ -293,24 +294,24 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   };
   run(GI10_STAGE_GBUFFER, 0, sizes_.pixels());
   if (frame_ == 0) {
-    // The yardstick of cache cell sizes: the diagonal of what the camera sees at the first frame.
+    // The yardstick D of cache cell sizes: the median view depth of what the camera sees at the
+    // first frame (core/render/view_length.h), within 0.4-1.2x the diagonal of what it sees in the
+    // shared interiors, but blind to a landscape seen through a window, which made that diagonal
+    // 14x the room's.
     std::vector<glsl::Gi10Pixel> pixels;
     executor.read_pixels(pixels);
-    vec3 lo(kInf), hi(-kInf);
+    std::vector<float> depths;
     for (const auto& p : pixels)
-      if (p.depth > 0.0f) {
-        lo = glm::min(lo, p.position);
-        hi = glm::max(hi, p.position);
-      }
-    visible_diagonal_ = lo.x <= hi.x ? glm::length(hi - lo) : context.scene.bounds.diagonal();
-    if (!(visible_diagonal_ > 0.0f)) visible_diagonal_ = std::max(context.scene.bounds.diagonal(), 1e-6f);
+      if (p.depth > 0.0f) depths.push_back(p.depth);
+    view_length_ = median_distance(std::move(depths));
+    if (!(view_length_ > 0.0f)) view_length_ = std::max(context.scene.bounds.diagonal(), 1e-6f);
   }
   if (resolved_.capsaicin_cells) {
     f.hash_base_exp = -10;  // 2^-10 units, Capsaicin's 1 mm where a unit is a metre
     f.min_cell = 0.1f;
   } else {
-    f.hash_base_exp = int(std::floor(std::log2(double(visible_diagonal_)))) - 16;
-    f.min_cell = params_.min_cell_ratio * visible_diagonal_;
+    f.hash_base_exp = int(std::floor(std::log2(double(view_length_)))) - 16;
+    f.min_cell = params_.min_cell_ratio * view_length_;
   }
   f.hash_base_exp = std::clamp(f.hash_base_exp, -100, 100);
   executor.begin_frame(context, f);
@@ -398,7 +399,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
                              {"probe_rays_per_pixel", double(c[GI10_COUNT_PROBES]) * 64.0 / pixels},
                              {"cache_shadow_rays_per_pixel", double(c[GI10_COUNT_SHADOW_RAYS]) / pixels},
                              {"frames_rendered", frame_},
-                             {"visible_diagonal", visible_diagonal_},
+                             {"view_length", view_length_},
                              {"cell_base", std::ldexp(1.0, f.hash_base_exp)},
                              {"min_cell", f.min_cell}};
   out.method_counters = counters;

@@ -74,7 +74,7 @@ class Gi10Renderer {
   bool started_ = false;
   uint32_t frame_ = 0;  // frames rendered since the start, warm-up included
   glsl::ViewParams previous_view_{};
-  float visible_diagonal_ = 0.0f;
+  float view_length_ = 0.0f;
 };
 
 class Gi10Method final : public Method {

@@ -54,7 +54,7 @@ struct Gi10Params {
     v("blur_mask", blur_mask, "auto|full|capsaicin: the denoiser's blur-mask dilation; capsaicin skips the centre "
       "row and column");
     v("cell_base", cell_base, "auto|scene|capsaicin: cache cells are 2^k times 2^(floor(log2 D)-16) with D the "
-      "diagonal of the points visible at frame 0 and at least min_cell_ratio D (scene), or 2^-10 units and at "
+      "median view depth of what the camera sees at frame 0 and at least min_cell_ratio D (scene), or 2^-10 units and at "
       "least 0.1 units (capsaicin)");
     v("cache_warmup_frames", cache_warmup_frames,
       "frames rendered at the first view before frame 0 of a render or sequence (untimed, discarded): the caches "
@@ -63,7 +63,7 @@ struct Gi10Params {
       "(Capsaicin 32 at 1080)");
     v("cell_px_height", cell_px_height, "image height at which hash_cell_px holds; other heights scale it, so cache "
       "cells keep their world size across resolutions (0: hash_cell_px at every height, as Capsaicin)");
-    v("min_cell_ratio", min_cell_ratio, "smallest cache cell as a fraction of the visible diagonal (cell_base scene)");
+    v("min_cell_ratio", min_cell_ratio, "smallest cache cell as a fraction of D, the median view depth at frame 0 (cell_base scene)");
     v("hash_buckets_log2", hash_buckets_log2,
       "log2 of the cache's buckets (Capsaicin 12; a full bucket loses rays: counters.insert_failed)");
     v("tiles_per_bucket_log2", tiles_per_bucket_log2, "log2 of the hash tiles per bucket (linear-probing length)");

@@ -68,6 +68,29 @@ struct EmissionSample {
   uint light SST_DEFAULT(0u);  // index in the light distribution (punctual lights first, then triangles)
 };
 
+// Where a directional light aims the paths it emits: discs around the point the light's rays
+// through `center` start from, of radius `radius`, 4 x radius, 16 x radius, ... up to the scene's
+// disc. The first takes half of the paths, the others and the scene's disc share the rest. The
+// density of start points then falls off about as 1/distance^2 from the view, as the solid angle
+// the view sees a patch under does, so a room lit through its windows in a landscape kilometres
+// wide gets its share of the paths and a patch of ground far away stands for its larger area with
+// a larger weight (docs/design/lengths.md). radius 0: the scene's disc only.
+struct EmissionFocus {
+  vec3 center;
+  float radius;
+};
+
+// How much each focus disc grows over the last, and the most discs before the scene's.
+SST_CONSTANT float kFocusGrowth = 4.0f;
+SST_CONSTANT int kMaxFocusDiscs = 16;
+
+SST_FUNC EmissionFocus emission_focus_none() {
+  EmissionFocus f;
+  f.center = vec3(0.0f);
+  f.radius = 0.0f;
+  return f;
+}
+
 // Estimated solid angle (sr) above which a triangle is sampled by solid angle. Measured on the
 // Cornell box and the staircase: the RMSE of area sampling matches below it, and the extra
 // trigonometry of every solid-angle sample is paid only where it helps.
@@ -345,21 +368,76 @@ SST_FUNC bool light_emit_point_or_spot(SST_IN(LightPunctual) light, vec2 u_dir, 
   return true;
 }
 
+// The probability of disc k of `discs` focus discs (k = discs: the scene's disc).
+SST_FUNC float focus_disc_share(int k, int discs) {
+  if (discs == 0) return 1.0f;
+  return k == 0 ? 0.5f : 0.5f / float(discs);
+}
+
+// The number of focus discs (EmissionFocus) inside a scene disc of radius r.
+SST_FUNC int focus_disc_count(float focus_radius, float r) {
+  int k = 0;
+  float d = focus_radius;
+  while (k < kMaxFocusDiscs && d > 0.0f && d < r) {
+    ++k;
+    d *= kFocusGrowth;
+  }
+  return k;
+}
+
 // A directional light's parallel rays cross the disc of the scene's bounding sphere (centre c,
 // radius r) perpendicular to their direction; a uniform point on it, pdf 1/(pi r^2), carries
 // E pi r^2. The disc is placed a little more than r upstream of c, so every ray starts outside
-// the scene.
-SST_FUNC bool light_emit_directional(LIGHT_CTX_PARAM SST_IN(LightPunctual) light, vec2 u_pos, SST_INOUT(EmissionSample) e) {
+// the scene. With a focus (EmissionFocus) the point is drawn on one of its discs (in the same
+// plane) or the scene's, with probability focus_disc_share, and carries E / its mixture pdf; a
+// point off the scene's disc misses every triangle but still counts.
+SST_FUNC bool light_emit_directional(LIGHT_CTX_PARAM SST_IN(LightPunctual) light, vec2 u_pos,
+                                     SST_IN(EmissionFocus) focus, SST_INOUT(EmissionSample) e) {
   float r = LIGHT_HEADER.bounds_radius;
   if (!(r > 0.0f) || !is_finite(r)) return false;
   Basis basis = basis_from_normal(light.direction);
-  SST_PRECISE float rho = r * sqrt(u_pos.x);
+  SST_PRECISE vec3 plane_centre = LIGHT_HEADER.bounds_center - light.direction * (1.01f * r);
+  SST_PRECISE vec3 focus_centre = focus.center - light.direction * dot3(focus.center - plane_centre, light.direction);
+  int discs = focus_disc_count(focus.radius, r);
+  // Disc `pick` (discs: the scene's) and u_pos.x's place within its share.
+  int pick = 0;
+  float below = 0.0f;
+  while (pick < discs && u_pos.x >= below + focus_disc_share(pick, discs)) {
+    below += focus_disc_share(pick, discs);
+    ++pick;
+  }
+  SST_PRECISE float u = (u_pos.x - below) / focus_disc_share(pick, discs);
+  u = clamp(u, 0.0f, kOneMinusEpsilon);
+  float disc_r = r;
+  if (pick < discs) {
+    disc_r = focus.radius;
+    for (int k = 0; k < pick; ++k) disc_r *= kFocusGrowth;
+  }
+  SST_PRECISE float rho = disc_r * sqrt(u);
   SST_PRECISE float phi = 2.0f * kPi * u_pos.y;
-  SST_PRECISE vec3 pos = LIGHT_HEADER.bounds_center - light.direction * (1.01f * r) +
-                         basis.t * (rho * accurate_cos(phi)) + basis.b * (rho * accurate_sin(phi));
+  SST_PRECISE vec3 pos = (pick < discs ? focus_centre : plane_centre) + basis.t * (rho * accurate_cos(phi)) +
+                         basis.b * (rho * accurate_sin(phi));
   e.position = pos;
   e.direction = light.direction;
-  SST_PRECISE vec3 w = light.intensity * (kPi * r * r);
+  if (discs == 0) {
+    SST_PRECISE vec3 w = light.intensity * (kPi * r * r);
+    e.weight = w;
+    return true;
+  }
+  // The mixture's pdf at pos, per unit area of the plane.
+  SST_PRECISE vec3 from_focus = pos - focus_centre;
+  SST_PRECISE vec3 from_centre = pos - plane_centre;
+  float f2 = dot3(from_focus, from_focus);
+  SST_PRECISE float pdf =
+      dot3(from_centre, from_centre) < r * r ? focus_disc_share(discs, discs) / (kPi * r * r) : 0.0f;
+  float dk = focus.radius;
+  for (int k = 0; k < discs; ++k) {
+    SST_PRECISE float term = focus_disc_share(k, discs) / (kPi * dk * dk);
+    if (f2 < dk * dk) pdf += term;
+    dk *= kFocusGrowth;
+  }
+  if (!(pdf > 0.0f)) return false;
+  SST_PRECISE vec3 w = light.intensity / pdf;
   e.weight = w;
   return true;
 }
@@ -403,7 +481,7 @@ SST_FUNC bool light_emit_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM uint k, vec2 u
 // would leave a few bits for the position on each. Returns false when the path would carry
 // nothing (a zero or non-finite weight).
 SST_FUNC bool light_sample_emission(SCENE_CTX_PARAM LIGHT_CTX_PARAM float u_pick, vec2 u_pos, vec2 u_dir,
-                                    SST_OUT(EmissionSample) e) {
+                                    SST_IN(EmissionFocus) focus, SST_OUT(EmissionSample) e) {
   e.position = vec3(0.0f);
   e.normal = vec3(0.0f);
   e.direction = vec3(0.0f);
@@ -418,7 +496,7 @@ SST_FUNC bool light_sample_emission(SCENE_CTX_PARAM LIGHT_CTX_PARAM float u_pick
   uint punctual_count = LIGHT_HEADER.punctual_count;
   if (index < punctual_count) {
     LightPunctual light = LIGHT_PUNCTUAL(index);
-    ok = light.type == LIGHT_DIRECTIONAL ? light_emit_directional(LIGHT_CTX light, u_pos, e)
+    ok = light.type == LIGHT_DIRECTIONAL ? light_emit_directional(LIGHT_CTX light, u_pos, focus, e)
                                          : light_emit_point_or_spot(light, u_dir, e);
   } else {
     ok = light_emit_triangle(SCENE_CTX LIGHT_CTX index - punctual_count, u_pos, u_dir, e);

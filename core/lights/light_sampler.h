@@ -105,15 +105,18 @@ class LightSampler {
   //   directional  uniform on the disc of the scene's bounding sphere (radius r) perpendicular to
   //                the direction, just over r upstream of its centre, pdf 1/(pi r^2)
   //                                                             weight pi r^2 E / pick
+  //                (with a focus, a mixture with the focus disc: weight E / (pdf pick))
   //   triangle     uniform on the triangle (pdf 1/A), cosine about the emitting side (pdf cos/pi,
   //                halved when a double-sided emitter picks a side with probability 1/2)
   //                                                             weight Le pi A (x2 double-sided) / pick
   // The pick has its own number (unlike `sample`, which remaps one): with a million emissive
   // triangles a remapped 24-bit number would leave a few bits for the position on each.
   // Returns false (the path carries nothing) when the weight would be zero or not finite.
-  bool sample_emission(float u_pick, vec2 u_pos, vec2 u_dir, EmissionSample& out) const {
+  // `focus`: where directional lights aim most of their paths (EmissionFocus).
+  bool sample_emission(float u_pick, vec2 u_pos, vec2 u_dir, EmissionSample& out,
+                       const EmissionFocus& focus = emission_focus_none()) const {
     out = EmissionSample{};
-    return scene_ && light_sample_emission(*scene_, packed_, u_pick, u_pos, u_dir, out);
+    return scene_ && light_sample_emission(*scene_, packed_, u_pick, u_pos, u_dir, focus, out);
   }
 
   // The tables the sampling reads (and the GPU uploads).

@@ -16,7 +16,7 @@ namespace sst {
 namespace {
 
 const std::vector<std::string> kTreeKinds = {"radix", "perfect", "agglomerative"};
-const std::vector<std::string> kLengthScales = {"vpl_bounds", "scene_bounds"};
+const std::vector<std::string> kLengthScales = {"view", "vpl_bounds", "scene_bounds"};
 const std::vector<std::string> kLeaves = {"made", "stored"};
 
 // Runs f and adds its wall time to `ms`.
@@ -25,13 +25,6 @@ void timed(double& ms, F&& f) {
   auto start = std::chrono::steady_clock::now();
   f();
   ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-float length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const Bounds3* scene_bounds) {
-  if (params.sigma_max_relative_to == "vpl_bounds") return vpl_bounds.diagonal();
-  if (!scene_bounds || scene_bounds->empty())
-    throw Error("light tree: sigma_max_relative_to 'scene_bounds' needs the scene bounds, and none were given");
-  return scene_bounds->diagonal();
 }
 
 bool contains(const std::vector<std::string>& names, const std::string& name) {
@@ -46,6 +39,18 @@ void write_all_leaves(const LightTree& tree, LightNode* nodes) {
 
 }  // namespace
 
+float tree_length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const TreeLengths* lengths) {
+  if (params.sigma_max_relative_to == "vpl_bounds") return vpl_bounds.diagonal();
+  if (params.sigma_max_relative_to == "view") {
+    if (!lengths || !(lengths->view > 0.0f))
+      throw Error("light tree: sigma_max_relative_to 'view' needs the view's length, and none was given");
+    return lengths->view;
+  }
+  if (!lengths || lengths->scene_bounds.empty())
+    throw Error("light tree: sigma_max_relative_to 'scene_bounds' needs the scene bounds, and none were given");
+  return lengths->scene_bounds.diagonal();
+}
+
 void validate(const LightTreeParams& params) {
   if (!contains(kTreeKinds, params.tree))
     throw Error("light tree: unknown tree '" + params.tree + "' (did you mean '" + nearest_name(params.tree, kTreeKinds) +
@@ -55,7 +60,10 @@ void validate(const LightTreeParams& params) {
   if (!(params.sigma_max >= 0.0f) || !std::isfinite(params.sigma_max))
     throw Error("light tree: sigma_max " + std::to_string(params.sigma_max) + " is not a finite number >= 0");
   if (!contains(kLengthScales, params.sigma_max_relative_to))
-    throw Error("light tree: sigma_max_relative_to '" + params.sigma_max_relative_to + "' is not vpl_bounds or scene_bounds");
+    throw Error("light tree: sigma_max_relative_to '" + params.sigma_max_relative_to + "' is not view, vpl_bounds or scene_bounds");
+  if (!(params.substitute_max_extent >= 0.0f) || !std::isfinite(params.substitute_max_extent))
+    throw Error("light tree: substitute_max_extent " + std::to_string(params.substitute_max_extent) +
+                " is not a finite number >= 0");
   if (!contains(kLeaves, params.leaves))
     throw Error("light tree: leaves '" + params.leaves + "' is not stored or made");
 }
@@ -88,7 +96,7 @@ LightTreeBuilder::~LightTreeBuilder() = default;
 LightTreeBuilder::LightTreeBuilder(LightTreeBuilder&&) noexcept = default;
 LightTreeBuilder& LightTreeBuilder::operator=(LightTreeBuilder&&) noexcept = default;
 
-void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
+void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* lengths,
                              LightTree& tree, LightTreeBuildStats* stats_out) {
   validate(params);
   // Size limits first, so that a refused build leaves `tree` as it was.
@@ -100,7 +108,7 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   auto start = std::chrono::steady_clock::now();
   Bounds3 bounds;
   timed(stats.bounds_ms, [&] { bounds = compute_vpl_bounds(vpls); });
-  float scale = length_scale(params, bounds, scene_bounds);
+  float scale = tree_length_scale(params, bounds, lengths);
   tree.kind = params.tree;
   tree.vpl_bounds = bounds;
   tree.length_scale = scale;
@@ -122,10 +130,10 @@ void LightTreeBuilder::build(const VplSet& vpls, const LightTreeParams& params, 
   if (stats_out) *stats_out = stats;
 }
 
-LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds,
+LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* lengths,
                            LightTreeBuildStats* stats) {
   LightTree tree;
-  LightTreeBuilder().build(vpls, params, scene_bounds, tree, stats);
+  LightTreeBuilder().build(vpls, params, lengths, tree, stats);
   return tree;
 }
 

@@ -6,9 +6,10 @@
 // Its parameters are LightTreeParams below; their visit() help is their documentation.
 //
 // Length scale D. sigma_max is a fraction of D, never an absolute length, because scenes come
-// in millimetres and kilometres. By default D is the diagonal of the bounding box of the VPL
-// positions: the extent of what is lit, which unlike the scene box is not inflated by a large
-// ground plane or sky geometry outside a room. The paper's sigma_max = 0.1 is in its scene
+// in millimetres and kilometres. A method's D is the view's (TreeLengths::view, twice the median
+// distance from the camera to what it sees), which nothing outside the view changes; a tree built
+// without a camera takes the diagonal of the bounding box of the VPL positions, which a sunlit
+// ground around a room inflates (docs/design/lengths.md). The paper's sigma_max = 0.1 is in its scene
 // units: roughly metres, in rooms some 20 units across, so 0.1 / 20 = 0.005 of D (measured
 // against the box diagonal of such a room, ~30 units, it would be nearer 0.003: the conversion
 // is a rough one either way, so the sensitivity to sigma_max is worth measuring). The
@@ -92,12 +93,23 @@ inline LightNode LightTree::leaf(uint32_t position) const {
   return light_tree_leaf(*this, position, vpl_count, {v_min, sigma_max_abs});
 }
 
+// The lengths D may be relative to besides the VPLs' own bounds (LightTreeParams::sigma_max_relative_to).
+struct TreeLengths {
+  Bounds3 scene_bounds;
+  float view = 0.0f;  // D of sigma_max_relative_to = view (TreeSamplerBase: 2 x median_view_distance)
+};
+
+// D for `params` over VPLs bounded by `vpl_bounds`. Throws sst::Error when `lengths` lacks what
+// sigma_max_relative_to asks for.
+float tree_length_scale(const struct LightTreeParams& params, const Bounds3& vpl_bounds, const TreeLengths* lengths);
+
 struct LightTreeParams {
   std::string tree = "radix";
   float v_min = 0.5f;
   float sigma_max = 0.005f;
-  std::string sigma_max_relative_to = "vpl_bounds";
+  std::string sigma_max_relative_to = "vpl_bounds";  // the methods' default is view (TreeMethodParams)
   std::string leaves = "made";
+  float substitute_max_extent = 1.0f;
 
   template <class V>
   void visit(V&& v) {
@@ -111,8 +123,13 @@ struct LightTreeParams {
       "substitutes (sst, hybrid): a node is suitable only if also its VPLs' standard deviation along its normal is "
       "<= sigma_max x D (SST paper 0.1 scene units ~ 0.005 D, hybrid thesis 0.3 ~ 0.015 D)");
     v("sigma_max_relative_to", sigma_max_relative_to,
-      "the length D of sigma_max: the diagonal of the VPLs' bounding box (vpl_bounds: what is lit, not inflated by "
-      "sky or ground geometry) or of the scene's (scene_bounds)");
+      "the length D of sigma_max (and of sst's distance_floor): view (twice the median distance from the camera to "
+      "what it sees: nothing outside the view changes it), vpl_bounds (the diagonal of the VPLs' bounding box, "
+      "which a sunlit ground plane around a room inflates) or scene_bounds (the scene's)");
+    v("substitute_max_extent", substitute_max_extent,
+      "substitutes (sst, hybrid): a suitable node stands in for its VPLs only where its box's diagonal is at most "
+      "this times its distance from the shading point (0: wherever it is suitable, the papers' rule; they bound no "
+      "node's width, and a wide coplanar ground biased sst by -14% at 10 km)");
     v("leaves", leaves,
       "made (only the internal nodes stored; a walk makes a leaf from its VPL when it reaches it: 96 bytes a VPL "
       "less and a single frame's build 2-7x faster, at the same sampling time) or stored (every node in the tree's "
@@ -143,10 +160,10 @@ class LightTreeBuilder {
   LightTreeBuilder(LightTreeBuilder&&) noexcept;
   LightTreeBuilder& operator=(LightTreeBuilder&&) noexcept;
 
-  // Builds into `tree`, reusing its node storage. `scene_bounds` is needed only with
-  // sigma_max_relative_to = scene_bounds. Throws sst::Error on bad parameters, too many VPLs
+  // Builds into `tree`, reusing its node storage. `lengths` is needed only with
+  // sigma_max_relative_to = view or scene_bounds. Throws sst::Error on bad parameters, too many VPLs
   // or a bad VPL, before `tree` is touched.
-  void build(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds, LightTree& tree,
+  void build(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* lengths, LightTree& tree,
              LightTreeBuildStats* stats = nullptr);
   // The tree's leaves are the VPLs (LightTree::vpls): a temporary set would leave it dangling.
   void build(VplSet&&, const LightTreeParams&, const Bounds3*, LightTree&, LightTreeBuildStats* = nullptr) = delete;
@@ -165,9 +182,9 @@ void store_leaves(LightTree& tree);
 void copy_nodes(const LightTree& tree, std::span<LightNode> out);
 
 // The one factory: a tree over `vpls` by params.tree.
-LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds = nullptr,
+LightTree build_light_tree(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* lengths = nullptr,
                            LightTreeBuildStats* stats = nullptr);
-LightTree build_light_tree(VplSet&&, const LightTreeParams&, const Bounds3* = nullptr,
+LightTree build_light_tree(VplSet&&, const LightTreeParams&, const TreeLengths* = nullptr,
                            LightTreeBuildStats* = nullptr) = delete;  // see LightTreeBuilder::build
 
 // Longest root-to-leaf path in edges (0 for a single leaf); for reports and tests.

@@ -54,6 +54,7 @@ GBufferSample trace_gbuffer(const RenderContext& ctx, int x, int y) {
   g.valid = true;
   g.p = s.p;
   g.n = s.ns;
+  g.depth = glm::length(s.p - ray.origin);
   return g;
 }
 

@@ -27,6 +27,7 @@ struct GBufferSample {
   bool valid = false;  // false: the ray left the scene
   vec3 p{0.0f};
   vec3 n{0.0f};  // shading normal on the viewer's side
+  float depth = 0.0f;  // distance from the camera
 };
 GBufferSample trace_gbuffer(const RenderContext& ctx, int x, int y);
 

@@ -18,6 +18,7 @@
 #include "core/lighttree/light_node.h"
 #include "core/manylight/many_light_layout.h"
 #include "core/material/brdf.h"
+#include "core/math/box_bounds.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/vpl/vpl_shading.h"
 #ifdef __cplusplus
@@ -37,6 +38,7 @@ struct ShadingPoint {
   Brdf brdf;
   int x SST_DEFAULT(0);  // pixel
   int y SST_DEFAULT(0);
+  float depth SST_DEFAULT(0.0f);  // distance from the camera (PathSample::depth)
 };
 
 struct IndirectEstimate {
@@ -53,10 +55,29 @@ SST_FUNC IndirectEstimate indirect_estimate_zero() {
   return e;
 }
 
+// The singularity clamp distance at sp (vpl_clamp_at).
+SST_FUNC float ml_clamp_distance(ML_CTX_PARAM SST_IN(ShadingPoint) sp) {
+  return vpl_clamp_at(ML_PARAMS.clamp_distance, ML_PARAMS.clamp_per_depth, sp.depth);
+}
+
+// Whether a suitable node may stand in for its VPLs at sp (sst, hybrid): only where its box looks
+// small from sp, its diagonal at most substitute_max_extent times the distance from sp to the box
+// (0: wherever the node is suitable, the papers' rule). The papers' tests (normals, spread along
+// the normal) say nothing of a node's width: a coplanar ground kilometres wide is one suitable
+// node whose Gaussian, fitted to VPLs crowded near the view, puts its samples where they are not.
+SST_FUNC bool ml_substitute_allowed(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_IN(LightNode) node) {
+  float ratio = ML_PARAMS.substitute_max_extent;
+  if (!(ratio > 0.0f)) return true;
+  SST_PRECISE vec3 extent = node.bounds_hi - node.bounds_lo;
+  SST_PRECISE float width2 = dot3(extent, extent);
+  SST_PRECISE float bound2 = ratio * ratio * box_distance2_min(node.bounds_lo, node.bounds_hi, sp.p);
+  return width2 <= bound2;
+}
+
 // One VPL's contribution at sp, with visibility: the shadow ray is traced (and counted) only when
 // the unshadowed contribution is non-zero.
 SST_FUNC vec3 shade_vpl(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_IN(Vpl) vpl, SST_INOUT(uint) shadow_rays) {
-  vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, ML_PARAMS.clamp_distance);
+  vec3 c = vpl_contribution(vpl, sp.p, sp.ng, sp.basis, sp.brdf, sp.wo, ml_clamp_distance(ML_CTX sp));
   if (max_component(c) <= 0.0f) return vec3(0.0f);
   shadow_rays += 1u;
   if (ML_OCCLUDED(sp.p, sp.ng, vpl.position, vpl.normal)) return vec3(0.0f);

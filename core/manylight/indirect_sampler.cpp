@@ -3,7 +3,8 @@
 namespace sst {
 
 void IndirectSampler::prepare(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters) {
-  begin_sampler_inputs(method_id(), lighting.vpls, lighting.clamp_distance, lighting.context.accel, inputs_);
+  begin_sampler_inputs(method_id(), lighting.vpls, lighting.clamp_distance, lighting.clamp_per_depth,
+                       lighting.context.accel, inputs_);
   build(lighting, timer, counters, inputs_);
 }
 

@@ -23,7 +23,7 @@ struct LightTreeBuildStats;
 // Builds a frame's light tree as build_light_tree does, possibly elsewhere (the Vulkan backend's
 // GPU builder); sets *built_on to where it ran ("cpu" or "gpu").
 using LightTreeBuildFn = std::function<LightTree(const VplSet& vpls, const LightTreeParams& params,
-                                                 const Bounds3* scene_bounds, LightTreeBuildStats* stats,
+                                                 const TreeLengths* lengths, LightTreeBuildStats* stats,
                                                  std::string* built_on)>;
 
 // What a frame is lit by, for a sampler to prepare from: the VPLs, their clamp, and the render
@@ -31,7 +31,10 @@ using LightTreeBuildFn = std::function<LightTree(const VplSet& vpls, const Light
 struct VplLighting {
   const RenderContext& context;
   const VplSet& vpls;
-  float clamp_distance;  // singularity clamp c (vpl_clamp.h)
+  // The singularity clamp c = vpl_clamp_at(clamp_distance, clamp_per_depth, depth) (VplStats).
+  float clamp_distance;
+  float clamp_per_depth;
+  float view_distance;  // median_view_distance of the frame's camera (TreeLengths)
 };
 
 class IndirectSampler {

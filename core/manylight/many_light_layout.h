@@ -60,7 +60,7 @@ struct CutGuide {
 struct SamplerParams {
   uint method;           // ML_METHOD_<name>
   uint vpl_count;        // ml_vpls[] length
-  float clamp_distance;  // VplLighting::clamp_distance
+  float clamp_distance;  // VplLighting::clamp_distance: c = vpl_clamp_at(this, clamp_per_depth, depth)
   uint tree_root;        // LightTree::root (tree samplers); kNoNode for an empty tree
   uint tree_first_leaf;  // LightTree::first_leaf
   uint tree_node_count;  // ml_nodes[] length, LightTree::node_count(); 0: empty tree
@@ -79,7 +79,7 @@ struct SamplerParams {
   // hybrid
   uint hybrid_cut_size;       // HybridParams::cut_size: traversals per sample
   float hybrid_n_min;         // HybridParams::n_min
-  float hybrid_d_max_abs;     // d_max * scene diagonal
+  float hybrid_d_max;         // HybridParams::d_max: a fraction of the shading point's camera distance
   uint hybrid_mock_cut_size;  // ml_mock_cut[] length
   // rtslc with direct_light = cuts: per block a cut of the emitter tree (core/lights/
   // light_layout.h's light_tree[]) of at most this many nodes, stored after the VPL cuts:
@@ -88,8 +88,8 @@ struct SamplerParams {
   uint rtslc_direct_cut_max_size;
   uint rtslc_direct_cut_first;
   uint rtslc_direct_sizes_first;
-  uint pad0;
-  uint pad1;
+  float clamp_per_depth;  // VplLighting::clamp_per_depth
+  float substitute_max_extent;  // sst, hybrid: LightTreeParams::substitute_max_extent
 };
 
 SST_END

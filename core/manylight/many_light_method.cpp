@@ -3,6 +3,7 @@
 #include <atomic>
 #include <mutex>
 
+#include "core/manylight/direct_pass.h"
 #include "core/manylight/shading_point.h"
 #include "core/pt/path_batch.h"
 #include "core/render/pixel_loop.h"
@@ -34,6 +35,14 @@ void write_many_light_pixel(const ManyLightPixelSums& sums, int spp, int x, int 
       sums.indirect_samples ? float(sums.nodes) / float(sums.indirect_samples) : 0.0f;
 }
 
+EmissionFocus view_emission_focus(const RenderContext& ctx, float view_distance, float directional_focus) {
+  EmissionFocus focus = emission_focus_none();
+  if (!(directional_focus > 0.0f) || !(view_distance > 0.0f)) return focus;
+  focus.center = ctx.camera.generate(0.5f * float(ctx.width), 0.5f * float(ctx.height)).origin;
+  focus.radius = directional_focus * view_distance;
+  return focus;
+}
+
 ManyLightMethod::ManyLightMethod(VplParams vpl_params, nlohmann::json params, std::unique_ptr<IndirectSampler> sampler)
     : vpl_params_(vpl_params), params_(std::move(params)), sampler_(std::move(sampler)) {
   validate(vpl_params_);
@@ -45,17 +54,21 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
   Image variance(ctx.width, ctx.height), depth(ctx.width, ctx.height, 1);
 
   VplStats vpl_stats;
+  const float view_distance = median_view_distance(ctx);
   VplSet vpls = timer.time("vpl_generation", [&] {
     return generate_vpls(ctx.scene, ctx.accel, ctx.lights, vpl_params_, ctx.options.seed, ctx.options.diffuse_only,
-                         &vpl_stats);
+                         &vpl_stats, view_emission_focus(ctx, view_distance, vpl_params_.directional_focus));
   });
   if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
-  VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance};
+  VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth, view_distance};
   frame.method_counters["vpl"] = to_json(vpl_stats);
+  frame.method_counters["view_distance"] = view_distance;
   sampler_->prepare(lighting, timer, frame.method_counters);
 
   const bool own_direct = sampler_->estimates_direct();
-  const PathConfig direct_only = path_config(own_direct ? -1 : 0, 0, ctx.options.diffuse_only);
+  const PathConfig direct_pass = many_light_direct_config(
+      own_direct, ctx.options.diffuse_only, vpl_params_.clamp_compensation ? vpl_params_.vpl_max_bounces : 0,
+      vpl_params_.vpl_min_bounces, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth);
   Accumulators acc;
   const int spp = ctx.options.spp;
   timer.time("sampling", [&] {
@@ -64,13 +77,13 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
       std::vector<uint32_t> depths;
       // The direct light of the tile's camera paths (in batches), then each path's indirect
       // estimate at its first hit, with the sampler where the path left it.
-      trace_tile_paths(ctx, direct_only, tile, rc, [&](int pixel, int, const Ray& ray, PathState& path) {
+      trace_tile_paths(ctx, direct_pass, tile, rc, [&](int pixel, int, const Ray& ray, PathState& path) {
         const int x = tile.x0 + pixel % tile.width(), y = tile.y0 + pixel / tile.width();
         PathSample& d = path.result;
         ManyLightPixelSums& sum = sums[size_t(pixel)];
         vec3 value(0.0f);
         if (d.depth > 0.0f) {
-          ShadingPoint sp = shading_point(path.first_hit, ray.direction, ctx.options.diffuse_only, x, y);
+          ShadingPoint sp = shading_point(path.first_hit, ray.direction, d.depth, ctx.options.diffuse_only, x, y);
           if (own_direct) d.direct += sampler_->estimate_direct(ctx, sp, path.ps, rc);
           IndirectEstimate e = sampler_->estimate(sp, path.ps);
           rc.shadow_rays += e.shadow_rays;
@@ -79,6 +92,8 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
           depths.push_back(e.nodes_visited);
           value = e.value;
         }
+        // The compensation path's light (zero without clamp compensation) is part of the estimate.
+        value += d.indirect;
         if (!is_finite(d.direct) || !is_finite(value)) {
           ++rc.nonfinite_samples;
           return;

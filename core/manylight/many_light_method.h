@@ -12,6 +12,7 @@
 #include "core/manylight/many_light_methods.h"
 #include "core/pt/path_tracer.h"
 #include "core/render/method.h"
+#include "core/render/view_length.h"
 #include "core/vpl/vpl_generator.h"
 
 namespace sst {
@@ -30,6 +31,12 @@ class ManyLightMethod final : public Method {
   nlohmann::json params_;
   std::unique_ptr<IndirectSampler> sampler_;
 };
+
+// Where the frame's directional lights aim their light paths (EmissionFocus): discs around the
+// camera from VplParams::directional_focus times `view_distance` (median_view_distance, core/
+// render/view_length.h) on, so that the VPLs land where the view can see their light. No focus
+// when either is 0.
+EmissionFocus view_emission_focus(const RenderContext& context, float view_distance, float directional_focus);
 
 // One pixel's sums over its samples: the direct pass's PathSamples (`path`, its `indirect` the
 // sampler's estimates) and what the extra layers need. ManyLightMethod::render fills them on the

@@ -29,11 +29,12 @@ struct SamplerInputs {
 
 // Starts `out` afresh for `method` (ML_METHOD_<name>) with the frame-wide inputs.
 inline void begin_sampler_inputs(uint32_t method, std::span<const Vpl> vpls, float clamp_distance,
-                                 const EmbreeAccel& accel, SamplerInputs& out) {
+                                 float clamp_per_depth, const EmbreeAccel& accel, SamplerInputs& out) {
   out = {};
   out.params.method = method;
   out.params.vpl_count = uint32_t(vpls.size());
   out.params.clamp_distance = clamp_distance;
+  out.params.clamp_per_depth = clamp_per_depth;
   out.params.tree_root = kNoNode;
   out.vpls = vpls;
   out.accel = &accel;

@@ -12,8 +12,9 @@
 
 SST_BEGIN
 
-// The hit `s` of a ray along `ray_direction` (any length) through pixel (x, y).
-SST_FUNC ShadingPoint shading_point(SST_IN(Surface) s, vec3 ray_direction, bool diffuse_only, int x, int y) {
+// The hit `s`, `depth` from the camera, of a ray along `ray_direction` (any length) through pixel (x, y).
+SST_FUNC ShadingPoint shading_point(SST_IN(Surface) s, vec3 ray_direction, float depth, bool diffuse_only, int x,
+                                   int y) {
   ShadingPoint sp;
   sp.p = s.p;
   sp.ng = s.ng;
@@ -24,6 +25,7 @@ SST_FUNC ShadingPoint shading_point(SST_IN(Surface) s, vec3 ray_direction, bool 
   sp.brdf = brdf_from_material(s.base_color, s.metallic, s.roughness, diffuse_only);
   sp.x = x;
   sp.y = y;
+  sp.depth = depth;
   return sp;
 }
 

@@ -14,6 +14,10 @@ struct TreeMethodParams {
   VplParams vpl;
   LightTreeParams tree;
 
+  // A method renders a view, so its tree's D is the view's (nothing outside it changes D); a tree
+  // built without a camera can only take the VPLs' bounds.
+  TreeMethodParams() { tree.sigma_max_relative_to = "view"; }
+
   template <class V>
   void visit(V&& v) {
     vpl.visit(v);

@@ -7,13 +7,15 @@ TreeSamplerBase::TreeSamplerBase(LightTreeParams params) : tree_params_(std::mov
 void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nlohmann::json& counters,
                             SamplerInputs& inputs) {
   LightTreeBuildStats stats;
-  const Bounds3& scene_bounds = lighting.context.scene.bounds;
+  // D = view: the diameter of the sphere around the camera through the median of what it sees,
+  // close to the VPLs' bounding-box diagonal in the shared interiors (0.9-3x the median distance).
+  const TreeLengths lengths{lighting.context.scene.bounds, 2.0f * lighting.view_distance};
   std::string built_on = "cpu";
   timer.time("tree_build", [&] {
     if (builder_)
-      tree_ = builder_(lighting.vpls, tree_params_, &scene_bounds, &stats, &built_on);
+      tree_ = builder_(lighting.vpls, tree_params_, &lengths, &stats, &built_on);
     else
-      cpu_builder_.build(lighting.vpls, tree_params_, &scene_bounds, tree_, &stats);
+      cpu_builder_.build(lighting.vpls, tree_params_, &lengths, tree_, &stats);
   });
   counters["tree"] = {{"kind", tree_.kind},
                       {"built_on", built_on},
@@ -28,6 +30,7 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
                       {"merge_ms", stats.merge_ms},
                       {"total_ms", stats.total_ms}};
   set_tree_inputs(tree_, inputs);
+  inputs.params.substitute_max_extent = tree_params_.substitute_max_extent;
 }
 
 }  // namespace sst

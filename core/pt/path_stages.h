@@ -26,6 +26,7 @@
 #include "core/material/brdf.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/sampling/sampling.h"
+#include "core/vpl/vpl_shading.h"
 
 SST_BEGIN
 
@@ -55,10 +56,20 @@ SST_FUNC PathCounters path_counters() {
 
 // A path's settings: PathTracerParams and RenderOptions::diffuse_only. max_bounces -1: the first
 // hit and its emission only, for a method that samples the direct light itself; 0: direct light.
+//
+// The VPL methods' direct pass may also compensate their singularity clamp (core/manylight/
+// direct_pass.h): with clamp_distance or clamp_per_depth > 0 the path continues past its first
+// bounce only where that bounce lands closer than the clamp c = vpl_clamp_at(clamp_distance,
+// clamp_per_depth, depth of the first hit), its throughput weighted by 1 - d^2/c^2: the part of
+// the light from surfaces within c that the clamped VPL estimate leaves out (Kollig and Keller
+// 2004). What it gathers from vertex 2 on goes to the indirect layer.
 struct PathConfig {
   int max_bounces;
   int rr_min_bounces;
   bool diffuse_only;
+  bool first_vertex_light;  // false: vertex 1 gathers no light (a method with its own direct light)
+  float clamp_distance;
+  float clamp_per_depth;
 };
 
 SST_FUNC PathConfig path_config(int max_bounces, int rr_min_bounces, bool diffuse_only) {
@@ -66,7 +77,14 @@ SST_FUNC PathConfig path_config(int max_bounces, int rr_min_bounces, bool diffus
   c.max_bounces = max_bounces;
   c.rr_min_bounces = rr_min_bounces;
   c.diffuse_only = diffuse_only;
+  c.first_vertex_light = true;
+  c.clamp_distance = 0.0f;
+  c.clamp_per_depth = 0.0f;
   return c;
+}
+
+SST_FUNC bool path_compensates_clamp(SST_IN(PathConfig) cfg) {
+  return cfg.clamp_distance > 0.0f || cfg.clamp_per_depth > 0.0f;
 }
 
 // A shadow ray: whether anything lies on origin + t dir, t in [0, tmax).
@@ -244,7 +262,7 @@ SST_FUNC void path_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st
   st.flags = PATH_NEE;
   st.nee = vec3(0.0f);
   LightSample ls;
-  if (light_sample(SCENE_CTX LIGHT_CTX st.s.p, st.s.ns, u_light, ls)) {
+  if ((st.k > 1 || cfg.first_vertex_light) && light_sample(SCENE_CTX LIGHT_CTX st.s.p, st.s.ns, u_light, ls)) {
     bool needs_ray;
     st.nee = light_sample_unshadowed(st.s.p, st.s.ng, st.s.lift, st.s.offset, brdf, basis, wo, ls, true, st.shadow,
                                      needs_ray);
@@ -289,11 +307,17 @@ SST_FUNC void path_bounce_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathStat
   if (next.triangle >= BVH_STACK_OVERFLOW) return;
   vec3 beta_next = st.beta * st.bounce_weight;
   Surface ns = make_surface(SCENE_CTX next.triangle, vec2(next.u, next.v), st.dir);
-  if (max_component(ns.emission) > 0.0f) {
+  if (max_component(ns.emission) > 0.0f && (st.k > 1 || cfg.first_vertex_light)) {
     float light_pdf = light_pdf_emissive_hit(SCENE_CTX LIGHT_CTX st.s.p, st.s.ns, next.triangle, ns.p, ns.ng);
     vec3 emitted = product_exact(beta_next * ns.emission, vec3(power_heuristic(st.bounce_pdf, light_pdf)));
     if (st.k == 1) st.result.direct += emitted;
     else st.result.indirect += emitted;
+  }
+  if (st.k == 1 && path_compensates_clamp(cfg)) {
+    float c = vpl_clamp_at(cfg.clamp_distance, cfg.clamp_per_depth, st.result.depth);
+    float residual = vpl_clamp_residual(st.s.p, ns.p, c);
+    if (!(residual > 0.0f)) return;  // the clamped VPL estimate holds all of this light
+    beta_next = product_exact(beta_next, vec3(residual));
   }
   st.beta = beta_next;
   st.s = ns;

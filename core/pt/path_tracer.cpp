@@ -10,8 +10,9 @@ PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, 
   PathCounters rays = path_counters();
   Surface s;
   bool hit = false;
-  PathSample out = trace_path(ctx.scene, ctx.lights.packed(), ctx.accel, ray.origin, ray.direction, params.max_bounces,
-                              params.rr_min_bounces, ctx.options.diffuse_only, sampler, rays, s, hit);
+  PathSample out = trace_path(ctx.scene, ctx.lights.packed(), ctx.accel, ray.origin, ray.direction,
+                              path_config(params.max_bounces, params.rr_min_bounces, ctx.options.diffuse_only),
+                              sampler, rays, s, hit);
   counters.primary_rays += rays.primary_rays;
   counters.shadow_rays += rays.shadow_rays;
   counters.bounce_rays += rays.bounce_rays;

@@ -54,16 +54,14 @@ SST_FUNC void trace_path_state(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST
   }
 }
 
-// The camera ray origin + t dir, then up to max_bounces indirect bounces (0: direct light only;
-// -1: the first hit and its emission only, for a method that samples the direct light itself),
-// Russian roulette after rr_min_bounces. `first_hit` receives the surface the camera ray hit when
-// `hit` is true: the many-light methods shade it with their own indirect estimate after taking
-// the direct light from here (max_bounces = 0), so direct light is computed one way for all.
-SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec3 origin, vec3 dir, int max_bounces,
-                               int rr_min_bounces, bool diffuse_only, SST_INOUT(PixelSampler) ps,
+// The camera ray origin + t dir, then the path `cfg` asks for (PathConfig). `first_hit` receives
+// the surface the camera ray hit when `hit` is true: the many-light methods shade it with their
+// own indirect estimate after taking the direct light from here (core/manylight/direct_pass.h),
+// so direct light is computed one way for all.
+SST_FUNC PathSample trace_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM vec3 origin, vec3 dir,
+                               SST_IN(PathConfig) cfg, SST_INOUT(PixelSampler) ps,
                                SST_INOUT(PathCounters) counters, SST_OUT(Surface) first_hit, SST_OUT(bool) hit) {
   PathState st = path_begin(origin, dir, ps);
-  PathConfig cfg = path_config(max_bounces, rr_min_bounces, diffuse_only);
   trace_path_state(SCENE_CTX LIGHT_CTX RAY_CTX st, cfg);
   ps = st.ps;
   counters.primary_rays += st.counters.primary_rays;

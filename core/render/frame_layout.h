@@ -76,6 +76,10 @@ struct ManyLightPush {
   uint vpl_first;       // the VPLs of this dispatch's slice (0, ~0u: all)
   uint vpl_end;
   uint slice_flags;     // ML_SLICE_FIRST | ML_SLICE_LAST; both for an unsliced dispatch
+  // Clamp compensation of the direct pass (core/manylight/direct_pass.h): the compensating path's
+  // bounces (0: none) and its Russian-roulette start.
+  int compensation_max_bounces;
+  int compensation_rr_min_bounces;
 };
 
 // The running sum of one pixel sample's exhaustive estimate between slices.
@@ -92,7 +96,7 @@ struct ManyLightSlice {
 #define ML_DISPATCH_WORDS 67u
 
 #ifdef __cplusplus
-static_assert(sizeof(ManyLightPush) == 100 && offsetof(ManyLightPush, vpl_first) == 88);
+static_assert(sizeof(ManyLightPush) == 108 && offsetof(ManyLightPush, vpl_first) == 88);
 static_assert(sizeof(ManyLightSlice) == 16);
 static_assert(sizeof(ManyLightTexel) == 96);
 static_assert(offsetof(ManyLightTexel, indirect) == 16 && offsetof(ManyLightTexel, indirect2) == 32);

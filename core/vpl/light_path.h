@@ -38,16 +38,16 @@ SST_FUNC vec3 vpl_albedo(SST_IN(Surface) s, bool diffuse_only) {
   return diffuse_only ? s.base_color : a;
 }
 
-// Light path `path`: its VPLs through VPL_DEPOSIT; returns (deposits, rays traced), deposits
+// Light path `path` (directional lights aiming at `focus`): its VPLs through VPL_DEPOSIT; returns (deposits, rays traced), deposits
 // kLightPathOverflow where a traversal gave up.
 SST_FUNC uvec2 trace_light_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM VPL_CTX_PARAM uint seed, uint path,
-                                int max_bounces, int min_bounces, bool diffuse_only) {
+                                int max_bounces, int min_bounces, bool diffuse_only, SST_IN(EmissionFocus) focus) {
   HashRng rng = hash_rng(seed, path, 0u, kVplStream);
   float u_pick = hash_rng_next(rng);
   vec2 u_pos = light_path_next_2d(rng);
   vec2 u_dir = light_path_next_2d(rng);
   EmissionSample e;
-  if (!light_sample_emission(SCENE_CTX LIGHT_CTX u_pick, u_pos, u_dir, e)) return uvec2(0u, 0u);
+  if (!light_sample_emission(SCENE_CTX LIGHT_CTX u_pick, u_pos, u_dir, focus, e)) return uvec2(0u, 0u);
   vec3 origin = e.normal == vec3(0.0f) ? e.position : offset_ray_origin(RAY_EPSILON, e.position, e.normal);
   vec3 dir = e.direction;
   vec3 beta = e.weight;

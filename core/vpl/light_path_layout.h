@@ -31,6 +31,8 @@ struct VplGenerationPush {
   uint diffuse_only;
   float ray_epsilon;  // scene_ray_epsilon(scene)
   uint pad;
+  vec3 focus_center;  // VplFocus: the EmissionFocus of directional lights
+  float focus_radius;
 };
 
 SST_END
@@ -39,7 +41,7 @@ SST_END
 #include <cstddef>
 static_assert(sizeof(sst::VplSlot) == 48);
 static_assert(offsetof(sst::VplSlot, normal) == 16 && offsetof(sst::VplSlot, intensity) == 32);
-static_assert(sizeof(sst::VplGenerationPush) == 32);
+static_assert(sizeof(sst::VplGenerationPush) == 48 && offsetof(sst::VplGenerationPush, focus_center) == 32);
 #endif
 
 #endif  // SST_CORE_VPL_LIGHT_PATH_LAYOUT_H

@@ -1,7 +1,8 @@
-// The VPL singularity clamp (docs/design/methods.md): a VPL's 1/d^2 is bounded by 1/c^2 with
-// c = fraction * D. D is the diagonal of the VPLs' bounding box, the extent of what is lit, not the
-// scene's: an interior with a large unlit ground plane or sky dome around it has a scene diagonal
-// many times its room's, and a clamp derived from that would darken every corner. The scene's
+// The VPL singularity clamp relative to the VPLs' bounds (VplParams::clamp_relative_to =
+// vpl_bounds, docs/design/lengths.md): a VPL's 1/d^2 is bounded by 1/c^2 with c = fraction * D for
+// the whole frame. D is the diagonal of the VPLs' bounding box, the extent of what is lit; a
+// sunlit ground outside a room still makes it hundreds of times the room's, which is why the
+// default clamp follows the camera distance instead (vpl_clamp_at, vpl_shading.h). The scene's
 // diagonal is used only when the VPLs span no extent (one VPL, or all at one point), where a
 // VPL-derived D would be 0 and the clamp would vanish.
 #pragma once

@@ -51,11 +51,12 @@ struct Tracer {
   const VplParams& params;
   uint32_t seed;
   bool diffuse_only;
+  EmissionFocus focus;
 
   // One light path (core/vpl/light_path.h); appends its VPLs to `out`.
   void trace(uint32_t path, Chunk& out) const {
     uvec2 r = trace_light_path(scene, lights.packed(), accel, out, seed, path, params.vpl_max_bounces,
-                               params.vpl_min_bounces, diffuse_only);
+                               params.vpl_min_bounces, diffuse_only, focus);
     out.rays += r.y;
   }
 
@@ -152,6 +153,16 @@ void validate(const VplParams& p) {
   if (p.vpl_min_bounces < 0) throw Error("vpl_min_bounces must be >= 0 (got " + std::to_string(p.vpl_min_bounces) + ")");
   if (!(p.clamp_fraction >= 0.0f) || !std::isfinite(p.clamp_fraction))
     throw Error("clamp_fraction must be a finite number >= 0 (got " + std::to_string(p.clamp_fraction) + ")");
+  if (!(p.directional_focus >= 0.0f) || !std::isfinite(p.directional_focus))
+    throw Error("directional_focus must be a finite number >= 0 (got " + std::to_string(p.directional_focus) + ")");
+  if (p.clamp_relative_to != "camera_distance" && p.clamp_relative_to != "vpl_bounds")
+    throw Error("clamp_relative_to must be camera_distance or vpl_bounds (got '" + p.clamp_relative_to + "')");
+}
+
+void set_clamp(const VplParams& p, const VplSet& vpls, const Scene& scene, VplStats& st) {
+  const bool per_depth = p.clamp_relative_to == "camera_distance";
+  st.clamp_distance = per_depth ? 0.0f : vpl_clamp_distance(p.clamp_fraction, vpls, scene);
+  st.clamp_per_depth = per_depth ? p.clamp_fraction : 0.0f;
 }
 
 nlohmann::json to_json(const VplStats& s) {
@@ -164,12 +175,14 @@ nlohmann::json to_json(const VplStats& s) {
           {"ms", s.ms},
           {"path_limit_reached", s.path_limit_reached},
           {"clamp_distance", s.clamp_distance},
+          {"clamp_per_depth", s.clamp_per_depth},
           {"vpls_per_bounce", s.vpls_per_bounce},
           {"intensity_per_bounce", intensity}};
 }
 
 VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
-                     const VplParams& params, uint32_t seed, bool diffuse_only, VplStats* stats) {
+                     const VplParams& params, uint32_t seed, bool diffuse_only, VplStats* stats,
+                     const EmissionFocus& focus) {
   validate(params);
   auto start = std::chrono::steady_clock::now();
   VplStats local;
@@ -177,7 +190,7 @@ VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSa
   st = VplStats{};
   const uint64_t target = uint64_t(params.vpls);
   const uint64_t max_paths = lights.empty() ? 0 : kMaxPathsPerVpl * target;
-  Tracer tracer{scene, accel, lights, params, seed, diffuse_only};
+  Tracer tracer{scene, accel, lights, params, seed, diffuse_only, focus};
   std::vector<Chunk> chunks = trace_chunks(tracer, target, max_paths);
   VplSet vpls = assemble(chunks, target, max_paths, params.vpl_max_bounces, st);
   st.paths_traced = std::min(uint64_t(chunks.size()) * kPathsPerChunk, max_paths);
@@ -193,7 +206,7 @@ VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSa
   chunks = {};
   if (chunk_bytes >= kReleaseBytes) release_free_memory();
   st.vpls = vpls.size();
-  st.clamp_distance = vpl_clamp_distance(params.clamp_fraction, vpls, scene);
+  set_clamp(params, vpls, scene, st);
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return vpls;
 }

@@ -41,7 +41,10 @@ struct VplParams {
   int vpls = 100000;
   int vpl_max_bounces = 8;
   int vpl_min_bounces = 3;
-  float clamp_fraction = 0.01f;
+  float clamp_fraction = 0.1f;
+  std::string clamp_relative_to = "camera_distance";
+  bool clamp_compensation = true;
+  float directional_focus = 4.0f;
   std::string export_vpls;
 
   template <class V>
@@ -52,8 +55,19 @@ struct VplParams {
     v("vpl_min_bounces", vpl_min_bounces,
       "light-path hits before Russian roulette may end a path (survival probability: the largest albedo component)");
     v("clamp_fraction", clamp_fraction,
-      "VPL singularity clamp: a VPL's 1/d^2 is at most 1/c^2, c = clamp_fraction x the diagonal of the VPLs' "
-      "bounding box");
+      "VPL singularity clamp: a VPL's 1/d^2 is at most 1/c^2, c = clamp_fraction x the length of clamp_relative_to");
+    v("clamp_relative_to", clamp_relative_to,
+      "the length c is a fraction of: camera_distance (the shaded point's distance to the camera, so that geometry "
+      "outside the view changes nothing) or vpl_bounds (the diagonal of the VPLs' bounding box, one c for the frame, "
+      "as sst did before)");
+    v("clamp_compensation", clamp_compensation,
+      "add back what the clamp removes (Kollig and Keller 2004): a BRDF-sampled path from the first hit whose first "
+      "bounce lands closer than c, weighted by 1 - d^2/c^2 (unbiased); false: the papers' clamped, darkened "
+      "estimate");
+    v("directional_focus", directional_focus,
+      "directional lights start 3/4 of their light paths on a disc around the camera of this many times the median "
+      "distance to what it sees, the rest over the whole scene (unbiased either way; 0: the whole scene only, as "
+      "before), so a sunlit room inside a large landscape still gets VPLs");
     v("export_vpls", export_vpls,
       "write the VPL set to this PLY point cloud (position, normal, intensity) after generation (empty: don't)");
   }
@@ -69,16 +83,24 @@ struct VplStats {
   uint64_t rays = 0;           // closest-hit rays of all traced paths
   double ms = 0.0;             // wall time of generation
   bool path_limit_reached = false;  // stopped at kMaxPathsPerVpl * vpls paths
-  float clamp_distance = 0.0f;      // c of vpl_clamp_distance for this set
+  // The clamp c = vpl_clamp_at(clamp_distance, clamp_per_depth, depth): vpl_clamp_distance of
+  // this set and 0 (clamp_relative_to = vpl_bounds), or 0 and clamp_fraction (camera_distance).
+  float clamp_distance = 0.0f;
+  float clamp_per_depth = 0.0f;
   // Per surface hit (index 0 = first hit = one-bounce VPLs): VPL count and summed intensity.
   std::vector<uint64_t> vpls_per_bounce;
   std::vector<dvec3> intensity_per_bounce;
 };
 
+// The clamp of `vpls` (VplStats::clamp_distance and clamp_per_depth) as `p` defines it.
+void set_clamp(const VplParams& p, const VplSet& vpls, const Scene& scene, VplStats& st);
+
 // The statistics for a JSON record (per-bounce intensity as RGB triples).
 nlohmann::json to_json(const VplStats& stats);
 
+// `focus`: where directional lights aim most of their paths (EmissionFocus, core/lights/light_sample.h).
 VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
-                     const VplParams& params, uint32_t seed, bool diffuse_only, VplStats* stats = nullptr);
+                     const VplParams& params, uint32_t seed, bool diffuse_only, VplStats* stats = nullptr,
+                     const EmissionFocus& focus = emission_focus_none());
 
 }  // namespace sst

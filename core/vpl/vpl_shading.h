@@ -1,8 +1,9 @@
 // The light one VPL sends to a shading point x (docs/design/methods.md), without visibility:
 //   f(x, wi, wo) * max(0, n_x . wi) * I * max(0, n_j . (-wi)) / max(d^2, c^2)
 // wi = unit direction from x to the VPL, d = distance, c = the singularity clamp distance
-// (vpl_clamp.h). The clamp bounds the 1/d^2 spike of a VPL right next to x, at the price of
-// slightly darker corners (the papers say the same). Every sampler and the exhaustive method use
+// (vpl_clamp_at below). The clamp bounds the 1/d^2 spike of a VPL right next to x; what it removes
+// is added back by the direct pass's compensating path (core/manylight/direct_pass.h) unless
+// VplParams::clamp_compensation is off, as in the papers, whose corners the clamp darkens. Every sampler and the exhaustive method use
 // these functions on both backends (shared C++/GLSL source), so they all compute the same thing;
 // visibility is separate because samplers trace it at different times. c should be > 0: with
 // c = 0 a VPL at x gives 0 (no direction) but one a hair away gives a huge value.
@@ -13,6 +14,25 @@
 #include "core/vpl/vpl.h"
 
 SST_BEGIN
+
+// The clamp distance c at a point `depth` metres from the camera: a fixed part (the set's
+// vpl_clamp_distance, 0 when the clamp follows the camera) or per_depth x depth, whichever is
+// larger. Per depth, c is what one pixel's neighbourhood spans on screen wherever the point lies,
+// so that nothing outside the view (a ground plane, a sky dome) changes it (docs/design/lengths.md).
+SST_FUNC float vpl_clamp_at(float fixed_distance, float per_depth, float depth) {
+  SST_PRECISE float c = per_depth * depth;
+  return max(fixed_distance, c);
+}
+
+// What the clamp removes from the light a point y sends to x, as a share of it: 1 - d^2/c^2
+// (1/d^2 against 1/max(d^2, c^2)), 0 at or beyond c.
+SST_FUNC float vpl_clamp_residual(vec3 x, vec3 y, float c) {
+  SST_PRECISE vec3 d = y - x;
+  SST_PRECISE float d2 = dot3(d, d);
+  SST_PRECISE float c2 = c * c;
+  SST_PRECISE float r = 1.0f - d2 / c2;
+  return d2 < c2 ? r : 0.0f;
+}
 
 struct VplGeometry {
   vec3 wi SST_DEFAULT(vec3(0.0f));  // unit, from x toward the VPL

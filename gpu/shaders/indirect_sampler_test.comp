@@ -27,6 +27,10 @@ struct IndirectTestPoint {
   float alpha;
   vec3 f0;
   uint specular;
+  float depth;
+  uint pad0;
+  uint pad1;
+  uint pad2;
 };
 
 struct IndirectTestResult {
@@ -75,6 +79,7 @@ void main() {
   sp.brdf.specular = q.specular != 0u;
   sp.x = q.x;
   sp.y = q.y;
+  sp.depth = q.depth;
   PixelSampler ps = pixel_sampler(q.seed, q.pixel, q.sample_index);
   ps.sets_used = q.sets_used;  // get2d only counts sets: the CPU's draws so far
   IndirectEstimate e = estimate_indirect(sp, ps);

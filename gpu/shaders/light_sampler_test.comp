@@ -59,7 +59,7 @@ void main() {
   put1(o + 16u, light_pdf_emissive_hit(p, n, tri, y, ng));
 
   EmissionSample e;
-  results[o + 17u] = light_sample_emission(u_pick, u_pos, u_dir, e) ? 1u : 0u;
+  results[o + 17u] = light_sample_emission(u_pick, u_pos, u_dir, emission_focus_none(), e) ? 1u : 0u;
   put3(o + 18u, e.position);
   put3(o + 21u, e.normal);
   put3(o + 24u, e.direction);

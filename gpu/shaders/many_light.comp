@@ -41,6 +41,7 @@ layout(push_constant) uniform Push { ManyLightPush push; };
 #include "gpu/shaders/path_trace.glsl"
 #include "gpu/shaders/indirect_sampler.glsl"
 #include "core/manylight/rtslc/rtslc_direct.h"
+#include "core/manylight/direct_pass.h"
 #include "core/manylight/shading_point.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -80,9 +81,13 @@ void main() {
     bool has_hit;
     // rtslc with direct_light = cuts samples the direct light itself (rtslc_direct.h).
     bool own_direct = ml_params.rtslc_direct_cut_max_size != 0u;
-    PathSample d = trace_path(push.view.eye, dir, own_direct ? -1 : 0, 0, push.diffuse_only != 0u, ps, counters, hit,
-                              has_hit);
-    if (own_direct && d.depth > 0.0) d.direct += estimate_rtslc_direct(shading_point(hit, dir, push.diffuse_only != 0u, int(xy.x), int(xy.y)), ps, counters);
+    PathConfig cfg = many_light_direct_config(own_direct, push.diffuse_only != 0u, push.compensation_max_bounces,
+                                              push.compensation_rr_min_bounces, ml_params.clamp_distance,
+                                              ml_params.clamp_per_depth);
+    PathSample d = trace_path(push.view.eye, dir, cfg, ps, counters, hit, has_hit);
+    if (own_direct && d.depth > 0.0)
+      d.direct += estimate_rtslc_direct(shading_point(hit, dir, d.depth, push.diffuse_only != 0u, int(xy.x), int(xy.y)),
+                                        ps, counters);
     // Every slice retraces the camera ray (the same bits each time); the first one counts it.
     if (first_slice) {
       acc.primary_rays += counters.primary_rays;
@@ -92,7 +97,7 @@ void main() {
     }
     vec3 value = vec3(0.0);
     if (d.depth > 0.0) {
-      ShadingPoint sp = shading_point(hit, dir, push.diffuse_only != 0u, int(xy.x), int(xy.y));
+      ShadingPoint sp = shading_point(hit, dir, d.depth, push.diffuse_only != 0u, int(xy.x), int(xy.y));
       IndirectEstimate e;
       if (first_slice && last_slice) {
         e = estimate_indirect(sp, ps);
@@ -106,7 +111,8 @@ void main() {
         acc.nodes += e.nodes_visited;
         ++acc.indirect_samples;
         atomicAdd(dispatch_words[min(e.nodes_visited, 64u)], 1u);
-        value = e.value;
+        // The compensation path's light (zero without clamp compensation) is part of the estimate.
+        value = e.value + d.indirect;
       }
     }
     // The lanes of a subgroup share lavapipe's loop limit, and the subgroup's iterations are at

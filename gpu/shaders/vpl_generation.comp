@@ -54,6 +54,9 @@ void vpl_deposit(uint slot, vec3 position, vec3 normal, vec3 intensity) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= params.path_count) return;
+  EmissionFocus focus;
+  focus.center = params.focus_center;
+  focus.radius = params.focus_radius;
   paths[i] = trace_light_path(i * params.max_bounces, params.seed, params.first_path + i, int(params.max_bounces),
-                              int(params.min_bounces), params.diffuse_only != 0u);
+                              int(params.min_bounces), params.diffuse_only != 0u, focus);
 }

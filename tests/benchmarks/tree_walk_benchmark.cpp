@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "core/lights/light_sampler.h"
+#include "core/manylight/many_light_method.h"
 #include "core/manylight/shading_point.h"
 #include "core/manylight/slc/slc_sampler.h"
 #include "core/manylight/sst/sst_sampler.h"
@@ -57,7 +58,7 @@ struct Frame {
   sst::RenderOptions options;
   std::unique_ptr<sst::RenderContext> context, empty_context;
   sst::VplSet vpls;
-  float clamp_distance = 0.0f;
+  float clamp_distance = 0.0f, clamp_per_depth = 0.0f, view_distance = 0.0f;
   std::vector<sst::ShadingPoint> points;
   std::vector<sst::PixelSampler> samplers;
 
@@ -79,6 +80,8 @@ struct Frame {
     sst::VplStats stats;
     vpls = sst::generate_vpls(scene, *accel, *lights, vp, kSeed, true, &stats);
     clamp_distance = stats.clamp_distance;
+    clamp_per_depth = stats.clamp_per_depth;
+    view_distance = sst::median_view_distance(*context);
     sst::PathTracerParams direct_only;
     direct_only.max_bounces = 0;
     sst::RayCounters rc;
@@ -90,7 +93,7 @@ struct Frame {
         sst::Surface hit;
         sst::PathSample d = sst::trace_path(*context, direct_only, ray, sampler, rc, &hit);
         if (!(d.depth > 0.0f)) continue;
-        points.push_back(sst::shading_point(hit, ray.direction, diffuse_only, x, y));
+        points.push_back(sst::shading_point(hit, ray.direction, d.depth, diffuse_only, x, y));
         samplers.push_back(sampler);
       }
   }
@@ -119,7 +122,9 @@ void walk(benchmark::State& state, const std::string& method, bool in_scene, boo
   std::unique_ptr<sst::IndirectSampler> sampler = make_sampler(method);
   sst::StageTimer timer;
   nlohmann::json counters;
-  sampler->prepare({in_scene ? *f.context : *f.empty_context, f.vpls, f.clamp_distance}, timer, counters);
+  sampler->prepare({in_scene ? *f.context : *f.empty_context, f.vpls, f.clamp_distance, f.clamp_per_depth,
+                    f.view_distance},
+                   timer, counters);
   uint64_t nodes = 0, samples = 0;
   double seconds = 0.0;
   for (auto _ : state) {

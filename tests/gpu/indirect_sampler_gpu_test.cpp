@@ -50,8 +50,10 @@ struct IndirectTestPoint {
   float alpha;
   vec3 f0;
   uint32_t specular;
+  float depth;
+  uint32_t pad[3];
 };
-static_assert(sizeof(IndirectTestPoint) == 128 && offsetof(IndirectTestPoint, f0) == 112);
+static_assert(sizeof(IndirectTestPoint) == 144 && offsetof(IndirectTestPoint, depth) == 128);
 
 struct IndirectTestResult {
   vec3 value;
@@ -83,7 +85,7 @@ struct TestFrame {
   RenderOptions options;
   std::unique_ptr<RenderContext> context;
   VplSet vpls;
-  float clamp_distance = 0.0f;
+  float clamp_distance = 0.0f, clamp_per_depth = 0.0f;
   FlatBvh bvh;
   std::vector<ShadingPoint> points;
   std::vector<PixelSampler> samplers;
@@ -109,6 +111,7 @@ struct TestFrame {
       VplStats stats;
       vpls = generate_vpls(scene, *accel, *lights, vp, kSeed, diffuse_only, &stats);
       clamp_distance = stats.clamp_distance;
+      clamp_per_depth = stats.clamp_per_depth;
     }
     bvh = build_flat_bvh(scene);
     trace_points();
@@ -127,13 +130,15 @@ struct TestFrame {
         Surface hit;
         PathSample d = trace_path(*context, direct_only, ray, sampler, rc, &hit);
         if (!(d.depth > 0.0f)) continue;
-        points.push_back(shading_point(hit, ray.direction, options.diffuse_only, x, y));
+        points.push_back(shading_point(hit, ray.direction, d.depth, options.diffuse_only, x, y));
         samplers.push_back(sampler);
         pixels.push_back(pixel);
       }
   }
 
-  VplLighting frame() const { return {*context, vpls, clamp_distance}; }
+  VplLighting frame() const {
+    return {*context, vpls, clamp_distance, clamp_per_depth, median_view_distance(*context)};
+  }
 };
 
 const TestFrame& test_frame(bool diffuse_only, int vpl_count) {
@@ -166,6 +171,7 @@ std::vector<IndirectTestPoint> pack_points(const TestFrame& f) {
     q.specular = s.brdf.specular ? 1u : 0u;
     q.x = s.x;
     q.y = s.y;
+    q.depth = s.depth;
     q.seed = kSeed;
     q.pixel = f.pixels[i];
     q.sample_index = 0;

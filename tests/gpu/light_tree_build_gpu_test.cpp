@@ -46,7 +46,7 @@ VplSet scene_vpls(const Scene& scene, int count, uint32_t seed = 7) {
 // denormals-are-zero set (e.g. inside rtcCommitScene) keep them for life, so a subnormal SST
 // similarity (seen at 20000 breakfast-room VPLs, perfect tree) became 0 in some runs of this
 // suite and not in others. The GPU (lavapipe) keeps subnormals; so does this reference.
-LightTree cpu_reference(const VplSet& vpls, const LightTreeParams& params, const Bounds3* scene_bounds) {
+LightTree cpu_reference(const VplSet& vpls, const LightTreeParams& params, const TreeLengths* scene_bounds) {
   LightTree tree;
   tbb::task_arena one_thread(1);  // no worker slots: every task runs on the calling thread
   one_thread.execute([&] {
@@ -103,7 +103,7 @@ class LightTreeBuildGpu : public ::testing::Test {
     context_ = std::make_unique<VulkanContext>(0);
     builder_ = std::make_unique<GpuLightTreeBuilder>(*context_);
   }
-  void expect_equal_to_cpu(const VplSet& vpls, const LightTreeParams& params = {}, const Bounds3* scene_bounds = nullptr) {
+  void expect_equal_to_cpu(const VplSet& vpls, const LightTreeParams& params = {}, const TreeLengths* scene_bounds = nullptr) {
     LightTree cpu = cpu_reference(vpls, params, scene_bounds);
     LightTree gpu = builder_->build(vpls, params, scene_bounds);
     expect_same_tree(gpu, cpu);
@@ -161,7 +161,8 @@ TEST_F(LightTreeBuildGpu, BreakfastRoomEqualsTheCpuTree) {
   LightTreeParams relative_to_scene;
   relative_to_scene.sigma_max_relative_to = "scene_bounds";
   relative_to_scene.v_min = 0.7f;
-  expect_equal_to_cpu(vpls, relative_to_scene, &scene.bounds);
+  const TreeLengths scene_lengths{scene.bounds, 0.0f};
+  expect_equal_to_cpu(vpls, relative_to_scene, &scene_lengths);
 }
 
 // Planar faces: many equal normals, positions on the box's faces (Morton cells at the grid's
@@ -230,7 +231,8 @@ TEST_F(LightTreeBuildGpu, PerfectTreeBreakfastRoomEqualsTheCpuTree) {
   LightTreeParams relative_to_scene = perfect_params();
   relative_to_scene.sigma_max_relative_to = "scene_bounds";
   relative_to_scene.v_min = 0.7f;
-  expect_equal_to_cpu(vpls, relative_to_scene, &scene.bounds);
+  const TreeLengths scene_lengths{scene.bounds, 0.0f};
+  expect_equal_to_cpu(vpls, relative_to_scene, &scene_lengths);
 }
 
 // Ties and duplicates as above; in a heap, equal VPLs merge with each other and with padding.

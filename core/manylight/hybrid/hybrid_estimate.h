@@ -65,19 +65,20 @@ SST_FUNC void hybrid_traverse(ML_CTX_PARAM SST_IN(ShadingPoint) sp, uint from, S
                               SST_INOUT(IndirectEstimate) e) {
   uint i = from;
   float prob = 1.0f;
+  float clamp_distance = ml_clamp_distance(ML_CTX sp);
   for (uint step = 0u; step < ML_PARAMS.tree_node_count; ++step) {  // bound: a malformed tree
     e.nodes_visited += 1u;
     LightNode node = ML_NODE(i);
     if (light_node_empty(node)) return;
-    if (light_node_is_leaf(node) || light_node_suitable(node)) {
+    if (light_node_is_leaf(node) || (light_node_suitable(node) && ml_substitute_allowed(ML_CTX sp, node))) {
       // A suitable node is close enough to a flat patch: its substitute stands for its VPLs.
       Vpl v = light_node_is_leaf(node) ? ML_VPL(node.left) : hybrid_sample_substitute(node, ps);
       vec3 c = shade_vpl(ML_CTX sp, v, e.shadow_rays);
       e.value += c / prob;
       return;
     }
-    float w0 = hybrid_weight(ML_NODE(node.left), sp.p, sp.basis.n, ML_PARAMS.clamp_distance);
-    float w1 = hybrid_weight(ML_NODE(node.right), sp.p, sp.basis.n, ML_PARAMS.clamp_distance);
+    float w0 = hybrid_weight(ML_NODE(node.left), sp.p, sp.basis.n, clamp_distance);
+    float w1 = hybrid_weight(ML_NODE(node.right), sp.p, sp.basis.n, clamp_distance);
     SST_PRECISE float w = w0 + w1;
     if (!(w > 0.0f)) return;  // neither child is expected to contribute: no backtracking
     float p0 = w0 / w;
@@ -102,6 +103,7 @@ SST_FUNC IndirectEstimate estimate_hybrid(ML_CTX_PARAM SST_IN(ShadingPoint) sp, 
   uint blocks[4];
   float p[4];
   float sum = 0.0f;
+  SST_PRECISE float d_max = ML_PARAMS.hybrid_d_max * sp.depth;
   for (int c = 0; c < 4; ++c) {
     int cx = clamp(bx + (c & 1), 0, int(ML_PARAMS.cut_blocks_x) - 1);
     int cy = clamp(by + (c >> 1), 0, int(ML_PARAMS.cut_blocks_y) - 1);
@@ -109,7 +111,7 @@ SST_FUNC IndirectEstimate estimate_hybrid(ML_CTX_PARAM SST_IN(ShadingPoint) sp, 
     CutGuide g = ML_CUT_GUIDE(blocks[c]);
     SST_PRECISE vec3 to_guide = sp.p - g.p;
     bool similar = g.valid != 0u && geometrically_similar(g.n, sp.basis.n, length3(to_guide), ML_PARAMS.hybrid_n_min,
-                                                          ML_PARAMS.hybrid_d_max_abs);
+                                                          d_max);
     SST_PRECISE float wx = (c & 1) != 0 ? tx : 1.0f - tx;
     SST_PRECISE float wy = (c >> 1) != 0 ? ty : 1.0f - ty;
     SST_PRECISE float bilinear = wx * wy;

@@ -40,11 +40,10 @@ void HybridSampler::build(const VplLighting& lighting, StageTimer& timer, nlohma
   const RenderContext& ctx = lighting.context;
   TreeSamplerBase::build(lighting, timer, counters, inputs);
   const uint32_t n = uint32_t(params_.cut_size);
-  d_max_abs_ = params_.d_max * ctx.scene.bounds.diagonal();
-  const float clamp = lighting.clamp_distance;
   auto centre = [](const BlockRect& r) { return glm::ivec2(r.x0 + r.w / 2, r.y0 + r.h / 2); };
   auto error = [&](const LightNode& node, const GBufferSample& g) {
-    return g.valid ? hybrid_weight(node, g.p, g.n, clamp) : luminance(node.intensity);
+    return g.valid ? hybrid_weight(node, g.p, g.n, vpl_clamp_at(lighting.clamp_distance, lighting.clamp_per_depth, g.depth))
+                   : luminance(node.intensity);
   };
   // Cut i of neighbouring blocks must cover nearby parts of the tree for blending by index.
   auto leaf_order = [&](std::vector<uint32_t>& cut) {
@@ -67,7 +66,7 @@ void HybridSampler::build(const VplLighting& lighting, StageTimer& timer, nlohma
   inputs.mock_cut = mock_cut_;
   inputs.params.hybrid_cut_size = uint32_t(params_.cut_size);
   inputs.params.hybrid_n_min = params_.n_min;
-  inputs.params.hybrid_d_max_abs = d_max_abs_;
+  inputs.params.hybrid_d_max = params_.d_max;
   inputs.params.hybrid_mock_cut_size = uint32_t(mock_cut_.size());
 }
 

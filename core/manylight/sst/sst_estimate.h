@@ -164,7 +164,7 @@ SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
     walk.nodes_visited += 1u;
     LightNode node = ML_NODE(walk.node);
     bool leaf = light_node_is_leaf(node);
-    if (leaf || (stop_at_suitable && light_node_suitable(node))) {
+    if (leaf || (stop_at_suitable && light_node_suitable(node) && ml_substitute_allowed(ML_CTX lp, node))) {
       Vpl vpl;
       if (leaf) {
         if (node.left == kNoNode || node.left >= ML_PARAMS.vpl_count) break;

@@ -328,9 +328,14 @@ TEST(LightTreeParamsTest, LengthScaleAndThresholds) {
   EXPECT_FLOAT_EQ(tree.sigma_max_abs, 0.005f * tree.length_scale);
   p.sigma_max_relative_to = "scene_bounds";
   EXPECT_THROW(build_light_tree(vpls, p), Error) << "scene_bounds needs the scene's box";
-  Bounds3 scene{vec3(-10.0f), vec3(10.0f)};
-  tree = build_light_tree(vpls, p, &scene);
+  TreeLengths lengths{Bounds3{vec3(-10.0f), vec3(10.0f)}, 2.5f};
+  tree = build_light_tree(vpls, p, &lengths);
   EXPECT_NEAR(tree.length_scale, 20.0f * std::sqrt(3.0f), 1e-4f);
+  p.sigma_max_relative_to = "view";
+  tree = build_light_tree(vpls, p, &lengths);
+  EXPECT_FLOAT_EQ(tree.length_scale, 2.5f) << "D = the view's length";
+  lengths.view = 0.0f;
+  EXPECT_THROW(build_light_tree(vpls, p, &lengths), Error) << "view needs the view's distance";
 }
 
 TEST(LightTreeParamsTest, BadValuesNameTheParameter) {

@@ -111,6 +111,47 @@ TEST(LightEmission, DirectionalLightCarriesIrradianceTimesTheBoundingDisc) {
   expect_uniform(radius2, "disc radius^2");
 }
 
+// With a focus, a directional light's start points crowd around the focus (half of them within
+// its first disc) but every region of the plane still receives E x its area in expectation: the
+// flux through a small disc at the focus, through rings across the discs' edges and far from the
+// focus, and the total.
+TEST(LightEmission, DirectionalFocusKeepsTheFluxOfEveryRegion) {
+  Scene scene = test::lambert_plane(0.5f, 400.0f, 5.0f, 1.0f);
+  const vec3 dir = glm::normalize(vec3(0.3f, 0.2f, -1.0f));
+  scene.lights.push_back(test::punctual_light(LightType::Directional, vec3(0), dir, vec3(2.0f)));
+  PreparedScene p(std::move(scene));
+  const float r = 0.5f * p.scene.bounds.diagonal();
+  EmissionFocus focus{vec3(30.0f, -20.0f, 1.0f), 1.0f};  // discs of 1, 4, 16, 64, 256 m, then the scene's
+  ASSERT_EQ(focus_disc_count(focus.radius, r), 5);
+  // The regions, as [inner, outer) distances from the focus's line, and their areas.
+  const std::array<std::pair<double, double>, 4> rings = {{{0.0, 0.5}, {3.0, 5.0}, {60.0, 70.0}, {300.0, 350.0}}};
+  const int n = 400000;
+  std::vector<std::vector<double>> flux(rings.size() + 1, std::vector<double>(size_t(n), 0.0));
+  int in_first = 0;
+  for (int i = 0; i < n; ++i) {
+    HashRng rng = hash_rng(5, uint32_t(i), 0, 78);
+    float u_pick = hash_rng_next(rng);
+    vec2 u_pos(hash_rng_next(rng), hash_rng_next(rng)), u_dir(hash_rng_next(rng), hash_rng_next(rng));
+    EmissionSample e;
+    ASSERT_TRUE(p.lights->sample_emission(u_pick, u_pos, u_dir, e, focus));
+    vec3 rel = e.position - focus.center;
+    vec3 across = rel - glm::dot(rel, dir) * dir;
+    double rho = double(glm::length(across));
+    in_first += rho < 1.0 ? 1 : 0;
+    for (size_t k = 0; k < rings.size(); ++k)
+      if (rho >= rings[k].first && rho < rings[k].second) flux[k][size_t(i)] = double(e.weight.x);
+    flux[rings.size()][size_t(i)] = double(e.weight.x);
+  }
+  EXPECT_NEAR(double(in_first) / n, 0.5, 0.01) << "half of the paths start in the first disc";
+  for (size_t k = 0; k <= rings.size(); ++k) {
+    double area = k < rings.size() ? M_PI * (rings[k].second * rings[k].second - rings[k].first * rings[k].first)
+                                   : M_PI * double(r) * double(r);
+    MeanError m = mean_error(flux[k]);
+    EXPECT_NEAR(m.mean, 2.0 * area, 5.0 * m.error) << "region " << k << ": E x area";
+    EXPECT_GT(m.error, 0.0) << "region " << k << " was reached";
+  }
+}
+
 class LightEmissionTriangle : public ::testing::TestWithParam<bool> {};
 
 // An emitter of radiance Le and area A emits Le pi A from each emitting side.

@@ -8,6 +8,7 @@
 
 #include "core/scene/default_scene.h"
 #include "core/vpl/vpl_clamp.h"
+#include "core/vpl/vpl_shading.h"
 #include "tests/analytic_scenes.h"
 #include "tests/core/vpl/vpl_test_util.h"
 
@@ -155,7 +156,10 @@ TEST(VplExtremes, SceneScaleKeepsFluxAndFiniteVpls) {
     test::scale_scene(scene, scale);
     PreparedScene p(std::move(scene));
     VplStats stats;
-    VplSet vpls = generate_vpls(p.scene, *p.accel, *p.lights, params(3000, 3, 100), 5, true, &stats);
+    VplParams pr = params(3000, 3, 100);
+    pr.clamp_relative_to = "vpl_bounds";
+    pr.clamp_fraction = 0.01f;
+    VplSet vpls = generate_vpls(p.scene, *p.accel, *p.lights, pr, 5, true, &stats);
     ASSERT_EQ(vpls.size(), 3000u) << "scale " << scale;
     expect_all_finite(vpls);
     for (const Vpl& v : vpls) {
@@ -166,7 +170,21 @@ TEST(VplExtremes, SceneScaleKeepsFluxAndFiniteVpls) {
     // D = the VPL bounds' diagonal: nearly the box's 2 sqrt(3) * scale with thousands of VPLs.
     EXPECT_GT(stats.clamp_distance, 0.9f * 0.01f * std::sqrt(12.0f) * scale);
     EXPECT_LE(stats.clamp_distance, 1.0001f * 0.01f * std::sqrt(12.0f) * scale);
+    EXPECT_EQ(stats.clamp_per_depth, 0.0f);
   }
+}
+
+// By default the clamp follows the camera: no fixed part, clamp_fraction per unit of depth.
+TEST(VplClamp, CameraDistanceClampHasNoFixedPart) {
+  PreparedScene p(load_default_scene());
+  VplStats stats;
+  VplParams pr = params(100, 8, 3);
+  pr.clamp_fraction = 0.25f;
+  generate_vpls(p.scene, *p.accel, *p.lights, pr, 1, true, &stats);
+  EXPECT_EQ(stats.clamp_distance, 0.0f);
+  EXPECT_EQ(stats.clamp_per_depth, 0.25f);
+  EXPECT_FLOAT_EQ(vpl_clamp_at(stats.clamp_distance, stats.clamp_per_depth, 4.0f), 1.0f);
+  EXPECT_FLOAT_EQ(vpl_clamp_at(0.5f, 0.0f, 4.0f), 0.5f) << "vpl_bounds: the set's c wherever the point";
 }
 
 TEST(VplDeterminism, SameSeedSameBitsWhateverTheThreadCount) {
@@ -238,7 +256,9 @@ TEST(VplExtremes, OneTwoAndThreeVpls) {
   PreparedScene p(load_default_scene());
   for (int n : {1, 2, 3}) {
     VplStats stats;
-    VplSet vpls = generate_vpls(p.scene, *p.accel, *p.lights, params(n, 8, 3), 2, false, &stats);
+    VplParams pr = params(n, 8, 3);
+    pr.clamp_relative_to = "vpl_bounds";
+    VplSet vpls = generate_vpls(p.scene, *p.accel, *p.lights, pr, 2, false, &stats);
     ASSERT_EQ(vpls.size(), size_t(n));
     EXPECT_GE(stats.paths, 1u);
     expect_all_finite(vpls);
@@ -266,6 +286,12 @@ TEST(VplParamsCheck, BadValuesNameTheParameter) {
   EXPECT_NE(message(bad_clamp).find("clamp_fraction"), std::string::npos);
   bad_clamp.clamp_fraction = NAN;
   EXPECT_NE(message(bad_clamp).find("clamp_fraction"), std::string::npos);
+  bad_clamp.clamp_fraction = 0.1f;
+  bad_clamp.clamp_relative_to = "scene";
+  EXPECT_NE(message(bad_clamp).find("clamp_relative_to"), std::string::npos);
+  bad_clamp.clamp_relative_to = "camera_distance";
+  bad_clamp.directional_focus = -1.0f;
+  EXPECT_NE(message(bad_clamp).find("directional_focus"), std::string::npos);
 }
 
 TEST(VplParamsCheck, JsonRoundTripListsEveryField) {

@@ -99,10 +99,6 @@ struct TreeLengths {
   float view = 0.0f;  // D of sigma_max_relative_to = view (TreeSamplerBase: 2 x median_view_distance)
 };
 
-// D for `params` over VPLs bounded by `vpl_bounds`. Throws sst::Error when `lengths` lacks what
-// sigma_max_relative_to asks for.
-float tree_length_scale(const struct LightTreeParams& params, const Bounds3& vpl_bounds, const TreeLengths* lengths);
-
 struct LightTreeParams {
   std::string tree = "radix";
   float v_min = 0.5f;
@@ -139,6 +135,10 @@ struct LightTreeParams {
 
 // Throws sst::Error naming the first bad parameter.
 void validate(const LightTreeParams& params);
+
+// D for `params` over VPLs bounded by `vpl_bounds`. Throws sst::Error when `lengths` lacks what
+// sigma_max_relative_to asks for.
+float tree_length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const TreeLengths* lengths);
 
 // Wall time of each build stage, in milliseconds.
 struct LightTreeBuildStats {

@@ -38,8 +38,8 @@ SST_FUNC vec3 vpl_albedo(SST_IN(Surface) s, bool diffuse_only) {
   return diffuse_only ? s.base_color : a;
 }
 
-// Light path `path` (directional lights aiming at `focus`): its VPLs through VPL_DEPOSIT; returns (deposits, rays traced), deposits
-// kLightPathOverflow where a traversal gave up.
+// Light path `path` (directional lights aiming at `focus`): its VPLs through VPL_DEPOSIT; returns
+// (deposits, rays traced), deposits kLightPathOverflow where a traversal gave up.
 SST_FUNC uvec2 trace_light_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM VPL_CTX_PARAM uint seed, uint path,
                                 int max_bounces, int min_bounces, bool diffuse_only, SST_IN(EmissionFocus) focus) {
   HashRng rng = hash_rng(seed, path, 0u, kVplStream);

@@ -31,7 +31,7 @@ struct VplGenerationPush {
   uint diffuse_only;
   float ray_epsilon;  // scene_ray_epsilon(scene)
   uint pad;
-  vec3 focus_center;  // VplFocus: the EmissionFocus of directional lights
+  vec3 focus_center;  // the EmissionFocus of directional lights (core/lights/light_sample.h)
   float focus_radius;
 };
 

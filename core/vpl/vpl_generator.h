@@ -65,9 +65,9 @@ struct VplParams {
       "bounce lands closer than c, weighted by 1 - d^2/c^2 (unbiased); false: the papers' clamped, darkened "
       "estimate");
     v("directional_focus", directional_focus,
-      "directional lights start 3/4 of their light paths on a disc around the camera of this many times the median "
-      "distance to what it sees, the rest over the whole scene (unbiased either way; 0: the whole scene only, as "
-      "before), so a sunlit room inside a large landscape still gets VPLs");
+      "directional lights start half of their light paths on a disc around the camera of this many times the median "
+      "distance to what it sees, the rest on discs 4x, 16x, ... as wide and the whole scene's (unbiased either way; 0: "
+      "the whole scene's only, as before), so a sunlit room inside a large landscape still gets VPLs");
     v("export_vpls", export_vpls,
       "write the VPL set to this PLY point cloud (position, normal, intensity) after generation (empty: don't)");
   }

@@ -3,10 +3,11 @@
 // wi = unit direction from x to the VPL, d = distance, c = the singularity clamp distance
 // (vpl_clamp_at below). The clamp bounds the 1/d^2 spike of a VPL right next to x; what it removes
 // is added back by the direct pass's compensating path (core/manylight/direct_pass.h) unless
-// VplParams::clamp_compensation is off, as in the papers, whose corners the clamp darkens. Every sampler and the exhaustive method use
-// these functions on both backends (shared C++/GLSL source), so they all compute the same thing;
-// visibility is separate because samplers trace it at different times. c should be > 0: with
-// c = 0 a VPL at x gives 0 (no direction) but one a hair away gives a huge value.
+// VplParams::clamp_compensation is off, as in the papers, whose corners the clamp darkens. Every
+// sampler and the exhaustive method use these functions on both backends (shared C++/GLSL
+// source), so they all compute the same thing; visibility is separate because samplers trace it
+// at different times. c should be > 0: with c = 0 a VPL at x gives 0 (no direction) but one a
+// hair away gives a huge value.
 #ifndef SST_CORE_VPL_VPL_SHADING_H
 #define SST_CORE_VPL_VPL_SHADING_H
 #include "core/material/brdf.h"
@@ -17,8 +18,8 @@ SST_BEGIN
 
 // The clamp distance c at a point `depth` metres from the camera: a fixed part (the set's
 // vpl_clamp_distance, 0 when the clamp follows the camera) or per_depth x depth, whichever is
-// larger. Per depth, c is what one pixel's neighbourhood spans on screen wherever the point lies,
-// so that nothing outside the view (a ground plane, a sky dome) changes it (docs/design/lengths.md).
+// larger. Per depth, c subtends the same angle from the camera wherever the point lies, and
+// nothing outside the view (a ground plane, a sky dome) changes it (docs/design/lengths.md).
 SST_FUNC float vpl_clamp_at(float fixed_distance, float per_depth, float depth) {
   SST_PRECISE float c = per_depth * depth;
   return max(fixed_distance, c);

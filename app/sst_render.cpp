@@ -98,8 +98,9 @@ void print_devices() {
   std::vector<sst::DeviceInfo> devices = sst::list_vulkan_devices(&reason);
   if (devices.empty()) std::printf("no Vulkan device: %s\n", reason.c_str());
   for (const sst::DeviceInfo& d : devices)
-    std::printf("%d: %s (%s), Vulkan %s, max storage buffer %.0f MiB%s%s\n", d.index, d.name.c_str(), d.type.c_str(),
-                sst::api_version_string(d.api_version).c_str(), double(d.max_storage_buffer_range) / (1024.0 * 1024.0),
+    std::printf("%d: %s (%s), Vulkan %s, max storage buffer %.0f MiB, ray queries %s%s%s\n", d.index, d.name.c_str(),
+                d.type.c_str(), sst::api_version_string(d.api_version).c_str(),
+                double(d.max_storage_buffer_range) / (1024.0 * 1024.0), d.ray_query ? "yes" : "no",
                 d.driver.empty() ? "" : ", driver ", d.driver.c_str());
 }
 

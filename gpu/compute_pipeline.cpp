@@ -19,8 +19,12 @@ void check(VkResult result, const std::string& what) {
 }  // namespace
 
 ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string& shader, uint32_t buffer_count,
-                                 uint32_t push_constant_bytes)
-    : context_(context), name_(shader), buffer_count_(buffer_count), push_bytes_(push_constant_bytes) {
+                                 uint32_t push_constant_bytes, std::vector<uint32_t> specialization,
+                                 VkAccelerationStructureKHR top_level)
+    : context_(context), name_(shader), buffer_count_(buffer_count), push_bytes_(push_constant_bytes),
+      top_level_(top_level) {
+  if (top_level && buffer_count <= kTopLevelBinding)
+    throw Error("shader " + shader + ": an acceleration structure needs binding " + std::to_string(kTopLevelBinding));
   VkDevice dev = context.device();
   std::span<const uint32_t> spirv = embedded_spirv(shader);
   if (spirv.empty()) throw Error("shader '" + shader + "' is not built in (was glslc found at configure time?)");
@@ -33,6 +37,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
   std::vector<VkDescriptorSetLayoutBinding> bindings(buffer_count);
   for (uint32_t i = 0; i < buffer_count; ++i)
     bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  if (top_level_) bindings[kTopLevelBinding].descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
   VkDescriptorSetLayoutCreateInfo set_info{};
   set_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO;
   set_info.bindingCount = buffer_count;
@@ -52,15 +57,21 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
   pipe_info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   pipe_info.stage.module = module_;
   pipe_info.stage.pName = "main";
+  std::vector<VkSpecializationMapEntry> entries(specialization.size());
+  for (uint32_t i = 0; i < entries.size(); ++i) entries[i] = {i, uint32_t(i * sizeof(uint32_t)), sizeof(uint32_t)};
+  VkSpecializationInfo spec_info{uint32_t(entries.size()), entries.data(), specialization.size() * sizeof(uint32_t),
+                                 specialization.data()};
+  if (!specialization.empty()) pipe_info.stage.pSpecializationInfo = &spec_info;
   pipe_info.layout = layout_;
   check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_), "pipeline " + shader);
 
-  VkDescriptorPoolSize pool_size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(buffer_count, 1u)};
+  VkDescriptorPoolSize pool_sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(buffer_count, 1u)},
+                                        {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1u}};
   VkDescriptorPoolCreateInfo pool_info{};
   pool_info.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO;
   pool_info.maxSets = 1;
-  pool_info.poolSizeCount = 1;
-  pool_info.pPoolSizes = &pool_size;
+  pool_info.poolSizeCount = top_level_ ? 2 : 1;
+  pool_info.pPoolSizes = pool_sizes;
   check(vkCreateDescriptorPool(dev, &pool_info, nullptr, &pool_), "descriptor pool");
   VkDescriptorSetAllocateInfo alloc{};
   alloc.sType = VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO;
@@ -115,13 +126,23 @@ double ComputePipeline::dispatch(const std::vector<const GpuBuffer*>& buffers, c
   VkDevice dev = context_.device();
   std::vector<VkDescriptorBufferInfo> infos(buffers.size());
   std::vector<VkWriteDescriptorSet> writes(buffers.size());
+  VkWriteDescriptorSetAccelerationStructureKHR top_level_write =
+      vk_struct<VkWriteDescriptorSetAccelerationStructureKHR>(
+          VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR);
+  top_level_write.accelerationStructureCount = 1;
+  top_level_write.pAccelerationStructures = &top_level_;
   for (size_t i = 0; i < buffers.size(); ++i) {
-    infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
     writes[i] = {};
     writes[i].sType = VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET;
     writes[i].dstSet = set_;
     writes[i].dstBinding = uint32_t(i);
     writes[i].descriptorCount = 1;
+    if (top_level_ && i == kTopLevelBinding) {
+      writes[i].descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+      writes[i].pNext = &top_level_write;
+      continue;
+    }
+    infos[i] = {buffers[i]->handle(), 0, VK_WHOLE_SIZE};
     writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     writes[i].pBufferInfo = &infos[i];
   }

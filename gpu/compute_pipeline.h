@@ -12,11 +12,24 @@
 
 namespace sst::gpu {
 
+// A specialization constant left to its run-time value (kSpecUnset in GLSL).
+constexpr uint32_t kSpecUnset = 0xFFFFFFFFu;
+
 class ComputePipeline {
  public:
   // `shader`: an embedded shader's name (shader_library.h); sst::Error when it is missing.
+  // `specialization`: the values of the shader's specialization constants 0, 1, ...
+  // (gpu/shaders/specialization.glsl; kSpecUnset leaves one to its run-time value).
+  // `top_level`: an acceleration structure that binding kTopLevelBinding holds instead of a
+  // buffer (the ray-query kernels, gpu/shaders/ray_queries.glsl); dispatch() ignores the buffer
+  // given for that binding.
   ComputePipeline(const VulkanContext& context, const std::string& shader, uint32_t buffer_count,
-                  uint32_t push_constant_bytes);
+                  uint32_t push_constant_bytes, std::vector<uint32_t> specialization = {},
+                  VkAccelerationStructureKHR top_level = VK_NULL_HANDLE);
+
+  // The binding of the scene's top-level acceleration structure in the ray-query kernels: that of
+  // the flat BVH's nodes in the others (GpuRenderContext::scene_buffers).
+  static constexpr uint32_t kTopLevelBinding = 5;
   ~ComputePipeline();
   ComputePipeline(const ComputePipeline&) = delete;
   ComputePipeline& operator=(const ComputePipeline&) = delete;
@@ -35,6 +48,7 @@ class ComputePipeline {
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkPipeline pipeline_ = VK_NULL_HANDLE;
+  VkAccelerationStructureKHR top_level_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   VkCommandPool command_pool_ = VK_NULL_HANDLE;

@@ -21,11 +21,11 @@ FrameOutput VulkanGi10::render(const RenderContext& context, const GpuRenderCont
   gpu_ = &gpu;
   if (!direct_pipeline_) {
     timer.time("shader_compile", [&] {
-      direct_pipeline_ = make_path_trace_pipeline(gpu.vulkan());
+      direct_pipeline_ = make_path_trace_pipeline(gpu);
       for (uint32_t stage = 0; stage < GI10_STAGES; ++stage)
-        pipelines_.push_back(std::make_unique<ComputePipeline>(
-            gpu.vulkan(), "gi10_" + std::to_string(stage), uint32_t(GpuRenderContext::kSceneBufferCount + kBufferCount),
-            uint32_t(sizeof(glsl::Gi10Push))));
+        pipelines_.push_back(gpu.make_pipeline("gi10_" + std::to_string(stage),
+                                               uint32_t(GpuRenderContext::kSceneBufferCount + kBufferCount),
+                                               uint32_t(sizeof(glsl::Gi10Push))));
     });
   }
   return method_.renderer().render(context, *this, timer);

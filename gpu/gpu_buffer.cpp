@@ -20,15 +20,16 @@ uint32_t find_memory_type(VkPhysicalDevice physical, uint32_t bits, VkMemoryProp
 
 }  // namespace
 
-GpuBuffer::GpuBuffer(const VulkanContext& context, size_t bytes) : device_(context.device()), bytes_(bytes) {
+GpuBuffer::GpuBuffer(const VulkanContext& context, size_t bytes, VkBufferUsageFlags usage)
+    : device_(context.device()), bytes_(bytes) {
   if (bytes == 0) bytes_ = bytes = 16;  // Vulkan forbids empty buffers; an empty array still binds
-  if (bytes > context.info().max_storage_buffer_range)
+  if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && bytes > context.info().max_storage_buffer_range)
     throw Error("GPU buffer of " + mib(bytes) + " exceeds the device's storage-buffer limit of " +
                 mib(context.info().max_storage_buffer_range) + " (" + context.info().name + ")");
   VkBufferCreateInfo info{};
   info.sType = VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO;
   info.size = bytes;
-  info.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+  info.usage = usage;
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   if (vkCreateBuffer(device_, &info, nullptr, &buffer_) != VK_SUCCESS) throw Error("vkCreateBuffer failed (" + mib(bytes) + ")");
   VkMemoryRequirements req;
@@ -40,6 +41,9 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, size_t bytes) : device_(conte
   alloc.sType = VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO;
   alloc.allocationSize = req.size;
   alloc.memoryTypeIndex = type;
+  VkMemoryAllocateFlagsInfo flags = vk_struct<VkMemoryAllocateFlagsInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO);
+  flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+  if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) alloc.pNext = &flags;
   if (type == UINT32_MAX || vkAllocateMemory(device_, &alloc, nullptr, &memory_) != VK_SUCCESS) {
     vkDestroyBuffer(device_, buffer_, nullptr);
     throw Error("out of GPU memory allocating " + mib(bytes) + " on " + context.info().name);
@@ -50,6 +54,12 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, size_t bytes) : device_(conte
     vkDestroyBuffer(device_, buffer_, nullptr);
     throw Error("cannot map a GPU buffer of " + mib(bytes));
   }
+}
+
+VkDeviceAddress GpuBuffer::device_address() const {
+  VkBufferDeviceAddressInfo info = vk_struct<VkBufferDeviceAddressInfo>(VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO);
+  info.buffer = buffer_;
+  return vkGetBufferDeviceAddress(device_, &info);
 }
 
 GpuBuffer::~GpuBuffer() {

@@ -19,13 +19,16 @@ namespace sst::gpu {
 class GpuBuffer {
  public:
   // sst::Error naming the size when it exceeds the device's storage-buffer range (lavapipe:
-  // 128 MiB) or memory runs out; never a silent overrun.
-  GpuBuffer(const VulkanContext& context, size_t bytes);
+  // 128 MiB) or memory runs out; never a silent overrun. `usage`: a storage buffer unless asked
+  // otherwise (acceleration structures and their inputs, gpu/acceleration_structure.h).
+  GpuBuffer(const VulkanContext& context, size_t bytes, VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   ~GpuBuffer();
   GpuBuffer(const GpuBuffer&) = delete;
   GpuBuffer& operator=(const GpuBuffer&) = delete;
 
   VkBuffer handle() const { return buffer_; }
+  // For buffers made with VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT.
+  VkDeviceAddress device_address() const;
   size_t size() const { return bytes_; }
   void* data() { return mapped_; }
   template <class T>

@@ -23,7 +23,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   VplSet vpls = timer.time("vpl_generation", [&] {
     return generate_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.scene, vpl_params,
                              ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms, 0,
-                             view_emission_focus(ctx, view_distance, vpl_params.directional_focus));
+                             view_emission_focus(ctx, view_distance, vpl_params.directional_focus), gpu.top_level());
   });
   if (!vpl_params.export_vpls.empty()) write_vpls_ply(vpl_params.export_vpls, vpls);
   VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth, view_distance};
@@ -33,20 +33,21 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   // shaders are compiled in stage shader_compile, like the sampling shader.
   auto on_gpu = [](const std::string& tree) { return tree == "radix" || tree == "perfect"; };
   std::unique_ptr<GpuLightTreeBuilder> tree_builder;
+  double tree_gpu_ms = 0.0;
   if (on_gpu(params.value("tree", "")))
     tree_builder = timer.time("shader_compile", [&] { return std::make_unique<GpuLightTreeBuilder>(gpu.vulkan()); });
   sampler.set_tree_builder([&](const VplSet& v, const LightTreeParams& p, const TreeLengths* lengths,
                                  LightTreeBuildStats* stats, std::string* built_on) {
     if (!on_gpu(p.tree) || !tree_builder) return build_light_tree(v, p, lengths, stats);
     *built_on = "gpu";
-    return tree_builder->build(v, p, lengths, stats);
+    return tree_builder->build(v, p, lengths, stats, &tree_gpu_ms);
   });
   sampler.prepare(lighting, timer, frame.method_counters);
   sampler.set_tree_builder({});
 
   const SamplerInputs& in = sampler.inputs();
   auto inputs = timer.time("gpu_upload", [&] { return std::make_unique<GpuManyLightInputs>(gpu.vulkan(), in); });
-  auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu); });
+  auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu, in.params); });
   ManyLightPassOutput out = timer.time("sampling", [&] {
     return render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
                              ctx.options.diffuse_only, vpl_params.clamp_compensation ? vpl_params.vpl_max_bounces : 0,
@@ -59,6 +60,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
       out.indirect_samples ? double(out.nodes_visited) / double(out.indirect_samples) : 0.0;
   frame.method_counters["nodes_visited_histogram"] = out.depth_histogram;
   frame.method_counters["gpu_ms"] = {{"vpl_generation", vpl_gpu_ms}, {"sampling", out.gpu_ms}};
+  if (tree_gpu_ms > 0.0) frame.method_counters["gpu_ms"]["tree_build"] = tree_gpu_ms;
   frame.method_counters["gpu"] = {{"sampling_dispatches", out.dispatches}};
   nlohmann::json built_on = {{"vpls", "gpu"}, {"sampling", "gpu"}};
   if (in.tree) built_on["tree"] = frame.method_counters["tree"].value("built_on", "cpu");

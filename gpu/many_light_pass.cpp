@@ -40,8 +40,10 @@ void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutp
 
 constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + kManyLightBufferCount + 4;
 
-std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu) {
-  return std::make_unique<ComputePipeline>(gpu.vulkan(), "many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)));
+std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu, const SamplerParams& params) {
+  return gpu.make_pipeline("many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)),
+                           {gpu.lights().header().sampler_kind, params.method,
+                            params.rtslc_direct_cut_max_size != 0u ? 1u : 0u});
 }
 
 ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,

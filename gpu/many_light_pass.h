@@ -26,8 +26,9 @@ struct ManyLightPassOutput {
   int dispatches = 0;
 };
 
-// The sampling shader, compiled by the driver (a stage of its own: lavapipe takes ~0.3 s for it).
-std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu);
+// The sampling shader, compiled by the driver (a stage of its own) for the sampler `params` and
+// gpu's light sampler: only that method's estimate is compiled (gpu/shaders/specialization.glsl).
+std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu, const SamplerParams& params);
 
 // Renders `spp` samples per pixel into `frame` (color, direct, indirect, albedo, normal, depth
 // and counters), which must be allocated at width x height. compensation_max_bounces and

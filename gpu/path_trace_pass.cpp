@@ -76,7 +76,7 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   glsl::PathTraceParams push = push_params(camera, width, height, seed, ray_epsilon, params, diffuse_only);
 
   std::unique_ptr<ComputePipeline> own;
-  if (!pipeline) pipeline = (own = make_path_trace_pipeline(context)).get();
+  if (!pipeline) pipeline = (own = make_path_trace_pipeline(context, lights)).get();
   GpuPathTraceResult out;
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;
   for (SampleChunks chunks(spp, context.info().type == "cpu"); !chunks.done();) {
@@ -92,9 +92,15 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   return out;
 }
 
-std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context) {
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context, const GpuLights& lights) {
   return std::make_unique<ComputePipeline>(context, "pt", GpuRenderContext::kSceneBufferCount + 1,
-                                           uint32_t(sizeof(glsl::PathTraceParams)));
+                                           uint32_t(sizeof(glsl::PathTraceParams)),
+                                           std::vector<uint32_t>{lights.header().sampler_kind});
+}
+
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const GpuRenderContext& gpu) {
+  return gpu.make_pipeline("pt", GpuRenderContext::kSceneBufferCount + 1, uint32_t(sizeof(glsl::PathTraceParams)),
+                           {gpu.lights().header().sampler_kind});
 }
 
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
@@ -104,12 +110,12 @@ GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeli
                             height, seed, spp, params, diffuse_only, &pipeline);
 }
 
-std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const VulkanContext& context) {
+std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const GpuRenderContext& gpu) {
   auto out = std::make_unique<PathWavefrontPipelines>();
   for (int stage = 0; stage < 5; ++stage)
-    out->stages[stage] = std::make_unique<ComputePipeline>(context, "pt_wavefront_" + std::to_string(stage),
-                                                           GpuRenderContext::kSceneBufferCount + 3,
-                                                           uint32_t(sizeof(glsl::PathWaveParams)));
+    out->stages[stage] =
+        gpu.make_pipeline("pt_wavefront_" + std::to_string(stage), GpuRenderContext::kSceneBufferCount + 3,
+                          uint32_t(sizeof(glsl::PathWaveParams)), {gpu.lights().header().sampler_kind});
   return out;
 }
 

@@ -41,8 +41,11 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
                                       bool diffuse_only, ComputePipeline* pipeline = nullptr);
 
-// pt.comp compiled by the driver, for the overload below (sst-render times it as its own stage).
-std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context);
+// pt.comp compiled by the driver for `lights`' sampler, tracing the flat BVH.
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context, const GpuLights& lights);
+// The same for the render context `gpu` (its ray queries where it uses them), for the overload
+// below (sst-render times it as its own stage).
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const GpuRenderContext& gpu);
 
 // The same with everything uploaded once per render (gpu/gpu_render_context.h) and the pipeline made.
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
@@ -56,7 +59,7 @@ constexpr size_t kPathWavePaths = size_t(1) << 16;
 struct PathWavefrontPipelines {
   std::unique_ptr<ComputePipeline> stages[5];  // pt_wavefront_0 .. _4
 };
-std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const VulkanContext& context);
+std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const GpuRenderContext& gpu);
 GpuPathTraceResult render_path_tracer_wavefront(const GpuRenderContext& gpu, PathWavefrontPipelines& pipelines,
                                                const PinholeCamera& camera, int width, int height, uint32_t seed,
                                                int spp, const PathTracerParams& params, bool diffuse_only);

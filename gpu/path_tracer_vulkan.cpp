@@ -8,13 +8,13 @@ namespace sst::gpu {
 FrameOutput VulkanPathTracer::render(const RenderContext& ctx, const GpuRenderContext& gpu, StageTimer& timer) {
   GpuPathTraceResult r;
   if (ctx.options.gpu_paths == "wavefront") {
-    auto pipelines = timer.time("shader_compile", [&] { return make_path_wavefront_pipelines(gpu.vulkan()); });
+    auto pipelines = timer.time("shader_compile", [&] { return make_path_wavefront_pipelines(gpu); });
     r = timer.time("render", [&] {
       return render_path_tracer_wavefront(gpu, *pipelines, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
                                           ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
     });
   } else {
-    auto pipeline = timer.time("shader_compile", [&] { return make_path_trace_pipeline(gpu.vulkan()); });
+    auto pipeline = timer.time("shader_compile", [&] { return make_path_trace_pipeline(gpu); });
     r = timer.time("render", [&] {
       return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
                                 ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);

@@ -23,11 +23,13 @@ namespace sst::gpu {
 // the GPU time of all dispatches; stats->ms is the wall time of the whole call.
 // `max_batch_paths` > 0 caps the paths of one batch below what the device allows (tests: the set
 // is the same for any batching). Throws sst::Error when validate(params) does, or when a batch
-// cannot be allocated. `focus`: generate_vpls'.
+// cannot be allocated. `focus`: generate_vpls'. `top_level`: the scene's acceleration structure,
+// to trace the light paths with ray queries instead of the flat BVH (GpuRenderContext::top_level).
 VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene, const GpuBvh& bvh,
                          const GpuLights& lights, const Scene& scene, const VplParams& params, uint32_t seed,
                          bool diffuse_only, VplStats* stats = nullptr, double* gpu_ms = nullptr,
-                         uint64_t max_batch_paths = 0, const EmissionFocus& focus = emission_focus_none());
+                         uint64_t max_batch_paths = 0, const EmissionFocus& focus = emission_focus_none(),
+                         VkAccelerationStructureKHR top_level = VK_NULL_HANDLE);
 
 // Paths of the next batch, given the VPLs still missing and those deposited by the paths traced
 // so far (exposed for tests). The first batch assumes half of min(vpl_min_bounces,

@@ -97,6 +97,47 @@ const char* type_name(VkPhysicalDeviceType t) {
   }
 }
 
+bool has_extension(VkPhysicalDevice device, const char* name) {
+  uint32_t count = 0;
+  if (vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr) != VK_SUCCESS) return false;
+  std::vector<VkExtensionProperties> all(count);
+  if (vkEnumerateDeviceExtensionProperties(device, nullptr, &count, all.data()) != VK_SUCCESS) return false;
+  for (const VkExtensionProperties& e : all)
+    if (std::strcmp(e.extensionName, name) == 0) return true;
+  return false;
+}
+
+// The extensions that ray queries need (acceleration structures need deferred host operations).
+constexpr const char* kRayQueryExtensions[] = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                               VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                               VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+// The features ray queries need, chained for vkGetPhysicalDeviceFeatures2 / vkCreateDevice.
+struct RayQueryFeatures {
+  VkPhysicalDeviceBufferDeviceAddressFeatures address = vk_struct<VkPhysicalDeviceBufferDeviceAddressFeatures>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_BUFFER_DEVICE_ADDRESS_FEATURES);
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR accel = vk_struct<VkPhysicalDeviceAccelerationStructureFeaturesKHR>(
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR);
+  VkPhysicalDeviceRayQueryFeaturesKHR query =
+      vk_struct<VkPhysicalDeviceRayQueryFeaturesKHR>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR);
+  VkPhysicalDeviceFeatures2 features =
+      vk_struct<VkPhysicalDeviceFeatures2>(VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2);
+  RayQueryFeatures() {
+    features.pNext = &address;
+    address.pNext = &accel;
+    accel.pNext = &query;
+  }
+  RayQueryFeatures(const RayQueryFeatures&) = delete;
+};
+
+bool supports_ray_query(VkPhysicalDevice device) {
+  for (const char* e : kRayQueryExtensions)
+    if (!has_extension(device, e)) return false;
+  RayQueryFeatures f;
+  vkGetPhysicalDeviceFeatures2(device, &f.features);
+  return f.address.bufferDeviceAddress && f.accel.accelerationStructure && f.query.rayQuery;
+}
+
 DeviceInfo describe(VkPhysicalDevice device, int index) {
   VkPhysicalDeviceProperties p{};
   vkGetPhysicalDeviceProperties(device, &p);
@@ -107,6 +148,7 @@ DeviceInfo describe(VkPhysicalDevice device, int index) {
   d.api_version = p.apiVersion;
   d.max_storage_buffer_range = p.limits.maxStorageBufferRange;
   d.max_compute_workgroup_invocations = p.limits.maxComputeWorkGroupInvocations;
+  d.ray_query = supports_ray_query(device);
   if (p.apiVersion >= VK_API_VERSION_1_2) {  // VkPhysicalDeviceDriverProperties is core in 1.2
     VkPhysicalDeviceDriverProperties driver{};
     driver.sType = VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES;
@@ -175,6 +217,16 @@ VulkanContext::VulkanContext(int device_index) {
     info.sType = VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO;
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    // Ray queries are enabled wherever the device has them; shaders without them never notice.
+    RayQueryFeatures ray_query;
+    if (info_.ray_query) {
+      ray_query.address.bufferDeviceAddress = VK_TRUE;
+      ray_query.accel.accelerationStructure = VK_TRUE;
+      ray_query.query.rayQuery = VK_TRUE;
+      info.pNext = &ray_query.features;
+      info.enabledExtensionCount = uint32_t(std::size(kRayQueryExtensions));
+      info.ppEnabledExtensionNames = kRayQueryExtensions;
+    }
     check(vkCreateDevice(physical_device_, &info, nullptr, &device_), "vkCreateDevice");
     vkGetDeviceQueue(device_, compute_queue_family_, 0, &compute_queue_);
   } catch (...) {

@@ -10,6 +10,14 @@
 
 namespace sst::gpu {
 
+// A zeroed Vulkan structure of the given type: vk_struct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO).
+template <class T>
+T vk_struct(VkStructureType type) {
+  T v{};
+  v.sType = type;
+  return v;
+}
+
 // The devices with a compute queue, in index order (a temporary instance is created and destroyed).
 // Throws sst::Error with one line when no instance can be created (no driver, Vulkan < 1.2).
 std::vector<DeviceInfo> enumerate_devices();

@@ -51,6 +51,11 @@
 #include "core/math/box_bounds.h"
 #include "core/math/vector_math.h"
 
+// The light sampler in use (core/lights/light_sample.h lists this optional hook).
+#ifndef LIGHT_SAMPLER_KIND
+#define LIGHT_SAMPLER_KIND LIGHT_HEADER.sampler_kind
+#endif
+
 SST_BEGIN
 
 // cos(max(0, a - b)) and sin(max(0, a - b)) from the sines and cosines of a, b in [0, pi].
@@ -118,7 +123,7 @@ SST_FUNC vec2 emitter_child_weights(LIGHT_CTX_PARAM uint first, vec3 p, vec3 n) 
   EmitterNode a = LIGHT_TREE(first);
   EmitterNode b = LIGHT_TREE(first + 1u);
   vec2 w;
-  if (LIGHT_HEADER.sampler_kind == LIGHT_SAMPLER_SLC) {
+  if (LIGHT_SAMPLER_KIND == LIGHT_SAMPLER_SLC) {
     w = slc_pair_weights(a.lo, a.hi, a.intensity, !(a.intensity > 0.0f), b.lo, b.hi, b.intensity,
                          !(b.intensity > 0.0f), p, basis_from_normal(n));
   } else {

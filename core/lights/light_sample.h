@@ -20,6 +20,9 @@
 //   LIGHT_EMISSIVE(k)     LightEmissive: emissive triangle k (distribution entry punctual_count + k)
 //   LIGHT_OF_TRIANGLE(t)  uint: the distribution entry of scene triangle t, or LIGHT_NONE
 //   LIGHT_TREE(i)         EmitterNode: node i of the emitter tree (tree and slc samplers)
+// and, optionally, LIGHT_SAMPLER_KIND: the sampler (LIGHT_SAMPLER_*), LIGHT_HEADER.sampler_kind
+// unless the includer fixes it (a GPU pipeline's specialization constant,
+// gpu/shaders/specialization.glsl, so that the driver compiles one sampler, not four).
 //
 // The distribution's CDF was summed in double; each entry holds it as a hi/lo float pair. The pick
 // compares `cdf > u` exactly through the pair, so the light picked for a float u is the one a
@@ -150,7 +153,7 @@ SST_FUNC uint light_pick_for(LIGHT_CTX_PARAM vec3 p, vec3 n, float u, SST_OUT(fl
   u_remapped = 0.0f;
   uint count = LIGHT_HEADER.distribution_size;
   if (count == 0u) return LIGHT_NONE;
-  uint kind = LIGHT_HEADER.sampler_kind;
+  uint kind = LIGHT_SAMPLER_KIND;
   if (kind == LIGHT_SAMPLER_TREE || kind == LIGHT_SAMPLER_SLC)
     return emitter_tree_pick(LIGHT_CTX p, n, u, pmf, u_remapped);
   if (kind == LIGHT_SAMPLER_UNIFORM) {
@@ -169,7 +172,7 @@ SST_FUNC uint light_pick_for(LIGHT_CTX_PARAM vec3 p, vec3 n, float u, SST_OUT(fl
 SST_FUNC float light_pick_pmf(LIGHT_CTX_PARAM vec3 p, vec3 n, uint i) {
   uint count = LIGHT_HEADER.distribution_size;
   if (i >= count) return 0.0f;
-  uint kind = LIGHT_HEADER.sampler_kind;
+  uint kind = LIGHT_SAMPLER_KIND;
   float pmf = 0.0f;
   if (kind == LIGHT_SAMPLER_TREE || kind == LIGHT_SAMPLER_SLC) emitter_tree_pmf(LIGHT_CTX p, n, i, pmf);
   else pmf = kind == LIGHT_SAMPLER_UNIFORM ? 1.0f / float(count) : light_pmf(LIGHT_CTX i);

@@ -37,6 +37,7 @@ nlohmann::json vulkan_device_record(const DeviceInfo& d, const nlohmann::json& s
           {"type", d.type},
           {"driver", d.driver},
           {"api_version", api_version_string(d.api_version)},
+          {"ray_query", d.ray_query},
           {"setup", setup}};
 }
 

@@ -49,9 +49,15 @@ FrameRenderer::FrameRenderer(const RenderOptions& options, const nlohmann::json&
   if (!backend_note.empty() && !quiet) std::fprintf(stderr, "note: %s\n", backend_note.c_str());
   method_ = create_method(options.method, method_params);
   if (options.threads > 0) threads_ = std::make_unique<ThreadLimit>(options.threads);
-  // A Vulkan render traces every ray through the flat BVH, also those the CPU traces for it (the
-  // guide pixels of rtslc's and the hybrid's cuts), so that nothing in it depends on Embree.
-  if (options_.backend == "vulkan") options_.accel = "flat";
+  if (options_.accel == "rayquery" && options_.backend != "vulkan")
+    throw Error("--accel rayquery needs the Vulkan backend (--backend vulkan)");
+  // The rays a Vulkan render's CPU side traces (the guide pixels of rtslc's and the hybrid's cuts)
+  // go through the flat BVH, so that nothing in it depends on Embree; its shaders trace that BVH
+  // or the device's acceleration structures (gpu_accel_, resolved when the device is open).
+  if (options_.backend == "vulkan") {
+    gpu_accel_ = options_.accel == "embree" ? "auto" : options_.accel;
+    options_.accel = "flat";
+  }
   device_ = cpu_device_record(options_);
 #ifdef SST_HAVE_VULKAN
   if (options_.backend == "vulkan") vulkan_method_ = gpu::make_vulkan_method(*method_, options.method);
@@ -62,7 +68,7 @@ FrameRenderer::~FrameRenderer() = default;
 
 void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   check_coordinates(scene);  // before Embree sees a vertex it cannot bound
-  accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel == "flat"); });
+  accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel != "embree"); });
   lights_ = timer.time("light_setup", [&] {
     return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler),
                                           parse_emitter_tree_build(options_.light_tree),
@@ -75,8 +81,9 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
     if (vulkan_method_) vulkan_method_->release_device();
     gpu_.reset();
     gpu_ = timer.time("gpu_setup", [&] {
-      return std::make_unique<gpu::GpuRenderContext>(options_.device, scene, *lights_, *accel_->flat_bvh());
+      return std::make_unique<gpu::GpuRenderContext>(options_.device, scene, *lights_, *accel_->flat_bvh(), gpu_accel_);
     });
+    options_.accel = gpu_->accel();  // what the record reports
     device_ = vulkan_device_record(gpu_->vulkan().info(), gpu_->describe());
   }
 #endif

@@ -67,6 +67,7 @@ class FrameRenderer {
   std::unique_ptr<EmbreeAccel> accel_;
   std::unique_ptr<LightSampler> lights_;
   std::unique_ptr<gpu::GpuRenderContext> gpu_;
+  std::string gpu_accel_ = "flat";  // GpuRenderContext's accel: flat, rayquery or auto
   std::unique_ptr<gpu::VulkanMethod> vulkan_method_, vulkan_direct_;
   nlohmann::json device_;
   std::unique_ptr<class ThreadLimit> threads_;

@@ -220,11 +220,8 @@ SST_FUNC PathState path_begin(vec3 origin, vec3 dir, SST_IN(PixelSampler) ps) {
   return st;
 }
 
-// The camera ray's hit h (triangle >= BVH_STACK_OVERFLOW: a miss, and the path ends).
-SST_FUNC void path_first_hit(SCENE_CTX_PARAM SST_INOUT(PathState) st, BvhHit h, SST_IN(PathConfig) cfg) {
-  st.flags = 0u;
-  if (h.triangle >= BVH_STACK_OVERFLOW) return;
-  Surface s = make_surface(SCENE_CTX h.triangle, vec2(h.u, h.v), st.dir);
+// The camera ray's hit h on surface s.
+SST_FUNC void path_first_surface(SST_INOUT(PathState) st, BvhHit h, SST_IN(Surface) s, SST_IN(PathConfig) cfg) {
   st.s = s;
   st.first_hit = s;
   st.hit = true;
@@ -236,6 +233,13 @@ SST_FUNC void path_first_hit(SCENE_CTX_PARAM SST_INOUT(PathState) st, BvhHit h, 
   // vertices 1 .. max_bounces+1 gather light, and vertex 1's share is the direct layer.
   st.k = 1;
   if (st.k <= cfg.max_bounces + 1) st.flags = PATH_ACTIVE;
+}
+
+// The camera ray's hit h (triangle >= BVH_STACK_OVERFLOW: a miss, and the path ends).
+SST_FUNC void path_first_hit(SCENE_CTX_PARAM SST_INOUT(PathState) st, BvhHit h, SST_IN(PathConfig) cfg) {
+  st.flags = 0u;
+  if (h.triangle >= BVH_STACK_OVERFLOW) return;
+  path_first_surface(st, h, make_surface(SCENE_CTX h.triangle, vec2(h.u, h.v), st.dir), cfg);
 }
 
 // Vertex st.s: its light sample (PATH_NEE, and PATH_RAY_SHADOW when visibility decides it) and its
@@ -298,15 +302,11 @@ SST_FUNC void path_shadow_result(SST_INOUT(PathState) st, bool occluded) {
   st.flags &= ~(PATH_NEE | PATH_RAY_SHADOW);
 }
 
-// The bounce ray's hit `next` (a miss ends the path: the world is black): the emission it sees,
-// MIS-weighted against the light sampler, then Russian roulette; next becomes the vertex to shade
-// while vertices remain.
-SST_FUNC void path_bounce_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st, BvhHit next,
-                              SST_IN(PathConfig) cfg) {
-  st.flags = 0u;
-  if (next.triangle >= BVH_STACK_OVERFLOW) return;
+// The bounce ray's hit `next` on surface ns: the emission it sees, MIS-weighted against the light
+// sampler, then Russian roulette; ns becomes the vertex to shade while vertices remain.
+SST_FUNC void path_bounce_surface(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st, BvhHit next,
+                                  SST_IN(Surface) ns, SST_IN(PathConfig) cfg) {
   vec3 beta_next = st.beta * st.bounce_weight;
-  Surface ns = make_surface(SCENE_CTX next.triangle, vec2(next.u, next.v), st.dir);
   if (max_component(ns.emission) > 0.0f && (st.k > 1 || cfg.first_vertex_light)) {
     float light_pdf = light_pdf_emissive_hit(SCENE_CTX LIGHT_CTX st.s.p, st.s.ns, next.triangle, ns.p, ns.ng);
     vec3 emitted = product_exact(beta_next * ns.emission, vec3(power_heuristic(st.bounce_pdf, light_pdf)));
@@ -331,6 +331,25 @@ SST_FUNC void path_bounce_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathStat
   }
   st.k += 1;
   if (st.k <= cfg.max_bounces + 1) st.flags = PATH_ACTIVE;
+}
+
+// The bounce ray's hit `next` (a miss ends the path: the world is black).
+SST_FUNC void path_bounce_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st, BvhHit next,
+                              SST_IN(PathConfig) cfg) {
+  st.flags = 0u;
+  if (next.triangle >= BVH_STACK_OVERFLOW) return;
+  path_bounce_surface(SCENE_CTX LIGHT_CTX st, next, make_surface(SCENE_CTX next.triangle, vec2(next.u, next.v), st.dir),
+                      cfg);
+}
+
+// path_first_hit for the camera ray (k = 0), path_bounce_hit after: one closest-hit site for a
+// whole path, so that a shader inlines the surface's evaluation (its textures) once.
+SST_FUNC void path_hit(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st, BvhHit h, SST_IN(PathConfig) cfg) {
+  st.flags = 0u;
+  if (h.triangle >= BVH_STACK_OVERFLOW) return;
+  Surface s = make_surface(SCENE_CTX h.triangle, vec2(h.u, h.v), st.dir);
+  if (st.k == 0) path_first_surface(st, h, s, cfg);
+  else path_bounce_surface(SCENE_CTX LIGHT_CTX st, h, s, cfg);
 }
 
 SST_END

@@ -43,14 +43,17 @@ SST_FUNC vec3 shade_light_sample(RAY_CTX_PARAM vec3 p, vec3 ng, vec3 lift, float
 // the path asks for it. `st` ends with the path's PathSample, counters, sampler and first hit.
 SST_FUNC void trace_path_state(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_INOUT(PathState) st,
                                SST_IN(PathConfig) cfg) {
-  path_first_hit(SCENE_CTX st, RAY_INTERSECT(st.origin, st.dir), cfg);
-  while ((st.flags & PATH_ACTIVE) != 0u) {
+  // One closest-hit site for the camera ray and every bounce (path_hit): a shader inlines the
+  // traversal and the surface evaluation once.
+  while (true) {
+    BvhHit h = RAY_INTERSECT(st.origin, st.dir);
+    path_hit(SCENE_CTX LIGHT_CTX st, h, cfg);
+    if ((st.flags & PATH_ACTIVE) == 0u) break;
     path_shade(SCENE_CTX LIGHT_CTX st, cfg);
     bool occluded = false;
     if ((st.flags & PATH_RAY_SHADOW) != 0u) occluded = RAY_OCCLUDED(st.shadow.origin, st.shadow.dir, st.shadow.tmax);
     path_shadow_result(st, occluded);
     if ((st.flags & PATH_RAY_BOUNCE) == 0u) break;
-    path_bounce_hit(SCENE_CTX LIGHT_CTX st, RAY_INTERSECT(st.origin, st.dir), cfg);
   }
 }
 

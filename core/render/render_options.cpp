@@ -35,8 +35,8 @@ void validate(const RenderOptions& o) {
   parse_light_sampler(o.light_sampler);  // throws for an unknown name
   parse_emitter_tree_build(o.light_tree);
   parse_emitter_distance(o.light_tree_distance);
-  if (o.accel != "embree" && o.accel != "flat")
-    throw Error("unknown accel '" + o.accel + "' (valid: embree, flat)");
+  if (o.accel != "embree" && o.accel != "flat" && o.accel != "rayquery")
+    throw Error("unknown accel '" + o.accel + "' (valid: embree, flat, rayquery)");
   if (o.path_batch < 0 || o.path_batch > (1 << 20))
     throw Error("path_batch must be in 0..1048576 (got " + std::to_string(o.path_batch) + ")");
   parse_ray_batch_api(o.batch_rays);

@@ -13,7 +13,10 @@ struct RenderOptions {
   std::string method = "pt";
   std::string backend = "cpu";
   int device = 0;  // Vulkan device index (sst-render --list-devices)
-  std::string accel = "embree";  // CPU ray queries: embree, or flat (the Vulkan backend's BVH)
+  // Ray queries. CPU: embree, or flat (the Vulkan backend's BVH). Vulkan: flat (that BVH traversed
+  // by the shaders) or rayquery (the device's acceleration structures); embree, the default,
+  // means rayquery on a GPU that has ray queries and flat elsewhere (gpu/gpu_render_context.h).
+  std::string accel = "embree";
   int path_batch = 1024;          // CPU paths in flight per thread (core/pt/path_batch.h); 0: one at a time
   std::string gpu_paths = "megakernel";  // Vulkan pt: megakernel (pt.comp) or wavefront (pt_wavefront.comp)
   std::string batch_rays = "stream";  // how a batch's rays go to Embree (RayBatchApi, core/accel/embree_accel.h)
@@ -45,7 +48,7 @@ struct RenderOptions {
     v("method", method, "rendering method (see --list-methods)");
     v("backend", backend, "cpu (Embree), vulkan (compute shaders) or auto (vulkan on a GPU, else cpu)");
     v("device", device, "Vulkan device index for backend vulkan/auto (see --list-devices)");
-    v("accel", accel, "CPU ray queries: embree, or flat (the BVH the Vulkan backend traverses, for exact cross-backend comparisons)");
+    v("accel", accel, "ray queries: on the CPU embree, or flat (the BVH the Vulkan backend traverses, for exact cross-backend comparisons); on Vulkan flat, or rayquery (the device's acceleration structures and VK_KHR_ray_query); the default (embree) is rayquery on a GPU that has it, else flat");
     v("path_batch", path_batch,
       "CPU: camera paths each thread keeps in flight, their rays traced together (0: one path at a time); the "
       "image bits are the same for every value");

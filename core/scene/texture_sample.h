@@ -74,34 +74,53 @@ SST_FUNC float texture_wrap_reduce(float u, uint mode) {
   return mode == SCENE_WRAP_REPEAT ? r : u;
 }
 
-// The texture at uv; vec4(1) for a texture without texels.
+// The texture at uv; vec4(1) for a texture without texels. The texels are read in one loop over
+// the taps (one for nearest or non-finite uvs, four for bilinear): a shader compiler inlines every
+// call of texture_texel with its three decodings, and four calls per sample made the path
+// kernels several times larger (Mesa 25's lavapipe compiled `pt` for over a minute).
 SST_FUNC vec4 texture_sample(TEXTURE_CTX_PARAM SST_IN(SceneTexture) t, vec2 uv) {
   int w = t.width;
   int h = t.height;
   if (w <= 0 || h <= 0) return vec4(1.0f);
-  if (!is_finite(uv.x) || !is_finite(uv.y)) return texture_texel(TEXTURE_CTX t, 0u);
-  // Texel centres sit at half-integers.
-  SST_PRECISE float x = texture_wrap_reduce(uv.x, t.wrap_s) * float(w) - 0.5f;
-  SST_PRECISE float y = texture_wrap_reduce(uv.y, t.wrap_t) * float(h) - 0.5f;
-  x = clamp(x, -float(w) * 1024.0f, float(w) * 1024.0f);  // keep the int conversion exact
-  y = clamp(y, -float(h) * 1024.0f, float(h) * 1024.0f);
-  if (t.nearest != 0u) {
-    SST_PRECISE float xn = x + 0.5f;
-    SST_PRECISE float yn = y + 0.5f;
-    int ix = texture_wrap_index(int(floor(xn)), w, t.wrap_s);
-    int iy = texture_wrap_index(int(floor(yn)), h, t.wrap_t);
-    return texture_texel(TEXTURE_CTX t, uint(iy) * uint(w) + uint(ix));
+  // Taps at texels r0 + x0, r0 + x1, r1 + x0, r1 + x1, in that order.
+  uint x0 = 0u, x1 = 0u, r0 = 0u, r1 = 0u;
+  uint taps = 1u;
+  float tx = 0.0f, ty = 0.0f;
+  if (is_finite(uv.x) && is_finite(uv.y)) {
+    // Texel centres sit at half-integers.
+    SST_PRECISE float x = texture_wrap_reduce(uv.x, t.wrap_s) * float(w) - 0.5f;
+    SST_PRECISE float y = texture_wrap_reduce(uv.y, t.wrap_t) * float(h) - 0.5f;
+    x = clamp(x, -float(w) * 1024.0f, float(w) * 1024.0f);  // keep the int conversion exact
+    y = clamp(y, -float(h) * 1024.0f, float(h) * 1024.0f);
+    if (t.nearest != 0u) {
+      SST_PRECISE float xn = x + 0.5f;
+      SST_PRECISE float yn = y + 0.5f;
+      x0 = uint(texture_wrap_index(int(floor(xn)), w, t.wrap_s));
+      r0 = uint(texture_wrap_index(int(floor(yn)), h, t.wrap_t)) * uint(w);
+    } else {
+      float fx = floor(x);
+      float fy = floor(y);
+      SST_PRECISE float fracx = x - fx;
+      SST_PRECISE float fracy = y - fy;
+      tx = fracx;
+      ty = fracy;
+      x0 = uint(texture_wrap_index(int(fx), w, t.wrap_s));
+      x1 = uint(texture_wrap_index(int(fx) + 1, w, t.wrap_s));
+      r0 = uint(texture_wrap_index(int(fy), h, t.wrap_t)) * uint(w);
+      r1 = uint(texture_wrap_index(int(fy) + 1, h, t.wrap_t)) * uint(w);
+      taps = 4u;
+    }
   }
-  float fx = floor(x);
-  float fy = floor(y);
-  SST_PRECISE float tx = x - fx;
-  SST_PRECISE float ty = y - fy;
-  uint x0 = uint(texture_wrap_index(int(fx), w, t.wrap_s));
-  uint x1 = uint(texture_wrap_index(int(fx) + 1, w, t.wrap_s));
-  uint r0 = uint(texture_wrap_index(int(fy), h, t.wrap_t)) * uint(w);
-  uint r1 = uint(texture_wrap_index(int(fy) + 1, h, t.wrap_t)) * uint(w);
-  return texture_mix4(texture_mix4(texture_texel(TEXTURE_CTX t, r0 + x0), texture_texel(TEXTURE_CTX t, r0 + x1), tx),
-                      texture_mix4(texture_texel(TEXTURE_CTX t, r1 + x0), texture_texel(TEXTURE_CTX t, r1 + x1), tx), ty);
+  vec4 c00 = vec4(0.0f), c01 = vec4(0.0f), c10 = vec4(0.0f), c11 = vec4(0.0f);
+  for (uint k = 0u; k < taps; ++k) {
+    vec4 c = texture_texel(TEXTURE_CTX t, ((k & 2u) == 0u ? r0 : r1) + ((k & 1u) == 0u ? x0 : x1));
+    if (k == 0u) c00 = c;
+    else if (k == 1u) c01 = c;
+    else if (k == 2u) c10 = c;
+    else c11 = c;
+  }
+  if (taps == 1u) return c00;
+  return texture_mix4(texture_mix4(c00, c01, tx), texture_mix4(c10, c11, tx), ty);
 }
 
 SST_END

@@ -33,6 +33,26 @@ SST_FUNC vec4 texture_or_one(SCENE_CTX_PARAM int texture, vec2 uv) {
   return texture >= 0 ? SCENE_TEXTURE_SAMPLE(texture, uv) : vec4(1.0f);
 }
 
+// Textures a, b, c and d at uv (texture_or_one each), sampled in one loop: a shader compiler
+// inlines every call of the texture filter, so a surface's four textures sampled where they are
+// used made four copies of it in every kernel that shades a hit (core/scene/texture_sample.h).
+SST_FUNC void textures_at(SCENE_CTX_PARAM int a, int b, int c, int d, vec2 uv, SST_OUT(vec4) ta, SST_OUT(vec4) tb,
+                          SST_OUT(vec4) tc, SST_OUT(vec4) td) {
+  ta = vec4(1.0f);
+  tb = vec4(1.0f);
+  tc = vec4(1.0f);
+  td = vec4(1.0f);
+  for (uint k = 0u; k < 4u; ++k) {
+    int texture = k == 0u ? a : (k == 1u ? b : (k == 2u ? c : d));
+    if (texture < 0) continue;
+    vec4 v = SCENE_TEXTURE_SAMPLE(texture, uv);
+    if (k == 0u) ta = v;
+    else if (k == 1u) tb = v;
+    else if (k == 2u) tc = v;
+    else td = v;
+  }
+}
+
 // COLOR_0 at b. Equal corners (every scene without vertex colours) give that colour exactly, so
 // that multiplying by it changes no bit.
 SST_FUNC vec4 triangle_color(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, vec2 b) {
@@ -53,6 +73,14 @@ SST_FUNC float surface_alpha(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(Sce
     SST_PRECISE float texel_alpha = SCENE_TEXTURE_SAMPLE(m.base_color_texture, triangle_uv(SCENE_CTX t, b)).w;
     a = a * texel_alpha;
   }
+  return a;
+}
+
+// surface_alpha from COLOR_0 at the point and the base-colour texel there (vec4(1) without a
+// texture), where the caller has sampled that texture already.
+SST_FUNC float surface_alpha_of(SST_IN(SceneMaterial) m, vec4 color, vec4 base_texel) {
+  SST_PRECISE float a = m.alpha * color.w;
+  if (m.base_color_texture >= 0) a = a * base_texel.w;
   return a;
 }
 

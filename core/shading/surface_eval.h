@@ -70,15 +70,16 @@ SST_FUNC vec3 terminator_lift(vec3 v0, vec3 v1, vec3 v2, vec3 n0, vec3 n1, vec3 
   return lift;
 }
 
-// The unit shading normal n bent by material m's tangent-space normal map at uv. The tangent is
+// The unit shading normal n bent by material m's tangent-space normal map, whose texel at the
+// point is `texel` (sampled by the caller, textures_at). The tangent is
 // the vertices' TANGENT interpolated, or, where they have none, the triangle's dp/du (per
 // triangle, unlike MikkTSpace's per-vertex average: the same on planar mappings, faceted on
 // curved ones), made orthogonal to n; the bitangent is cross(n, tangent) * w, w the TANGENT's
 // sign or, derived, the sign that makes it -dp/dv (glTF's v runs down the image, a normal map's
 // +y up it). n is returned unbent where no frame exists (no uv parametrisation) or where the
 // bent normal would cross the geometric normal ng's plane, which shading cannot take.
-SST_FUNC vec3 normal_mapped(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(SceneMaterial) m, vec2 b, vec2 uv, vec3 n,
-                            vec3 ng) {
+SST_FUNC vec3 normal_mapped(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(SceneMaterial) m, vec2 b, vec4 texel,
+                            vec3 n, vec3 ng) {
   vec4 t0 = SCENE_TANGENT(t.v0);
   vec4 t1 = SCENE_TANGENT(t.v1);
   vec4 t2 = SCENE_TANGENT(t.v2);
@@ -104,7 +105,6 @@ SST_FUNC vec3 normal_mapped(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(Scen
   if (!(tl > 0.0f) || !is_finite(tl)) return n;
   SST_PRECISE vec3 tu = tp / tl;
   SST_PRECISE vec3 bt = cross3(n, tu) * w;
-  vec4 texel = SCENE_TEXTURE_SAMPLE(m.normal_texture, uv);
   SST_PRECISE float lx = (texel.x * 2.0f - 1.0f) * m.normal_scale;
   SST_PRECISE float ly = (texel.y * 2.0f - 1.0f) * m.normal_scale;
   SST_PRECISE float lz = texel.z * 2.0f - 1.0f;
@@ -137,15 +137,27 @@ SST_FUNC float triangle_area(SCENE_CTX_PARAM uint tri) {
 }
 
 // Emitted radiance of triangle `tri` at barycentrics (b1, b2), seen from the side `front_face`.
+// Material m's emitted radiance, seen from the side `front_face`, at a point of alpha `alpha` where
+// its emissive texture reads `emissive_texel`.
+SST_FUNC vec3 material_emission(SST_IN(SceneMaterial) m, bool front_face, float alpha, vec4 emissive_texel) {
+  if (!front_face && m.double_sided == 0u) return vec3(0.0f);
+  if (m.alpha_cutoff > 0.0f && alpha < m.alpha_cutoff) return vec3(0.0f);
+  if (m.emissive_texture < 0) return m.emission;
+  SST_PRECISE vec3 e = m.emission * vec3(emissive_texel.x, emissive_texel.y, emissive_texel.z);
+  return e;
+}
+
+// Emitted radiance of triangle `tri` at barycentrics (b1, b2), seen from the side `front_face`.
 SST_FUNC vec3 triangle_emission(SCENE_CTX_PARAM uint tri, vec2 barycentric, bool front_face) {
   SceneTriangle t = SCENE_TRIANGLE(tri);
   SceneMaterial m = SCENE_MATERIAL(t.material);
   if (!front_face && m.double_sided == 0u) return vec3(0.0f);
-  if (m.alpha_cutoff > 0.0f && surface_alpha(SCENE_CTX t, m, barycentric) < m.alpha_cutoff) return vec3(0.0f);
-  if (m.emissive_texture < 0) return m.emission;
-  vec4 texel = texture_or_one(SCENE_CTX m.emissive_texture, triangle_uv(SCENE_CTX t, barycentric));
-  SST_PRECISE vec3 e = m.emission * vec3(texel.x, texel.y, texel.z);
-  return e;
+  if (m.alpha_cutoff <= 0.0f && m.emissive_texture < 0) return m.emission;
+  vec4 base_texel, emissive_texel, unused0, unused1;
+  textures_at(SCENE_CTX m.alpha_cutoff > 0.0f ? m.base_color_texture : -1, m.emissive_texture, -1, -1,
+              triangle_uv(SCENE_CTX t, barycentric), base_texel, emissive_texel, unused0, unused1);
+  float alpha = surface_alpha_of(m, triangle_color(SCENE_CTX t, barycentric), base_texel);
+  return material_emission(m, front_face, alpha, emissive_texel);
 }
 
 // The surface that a ray with direction `incoming` hits on triangle `tri` at Embree's
@@ -173,22 +185,23 @@ SST_FUNC Surface make_surface(SCENE_CTX_PARAM uint tri, vec2 b, vec3 incoming) {
   s.lift = terminator_lift(v0, v1, v2, n0 * side, n1 * side, n2 * side, s.p, b);
   float len = length3(ns);
   ns = len > 0.0f && is_finite(len) ? ns / len : s.ng;
-  if (m.normal_texture >= 0) ns = normal_mapped(SCENE_CTX t, m, b, s.uv, ns, s.ng);
+  vec4 normal_texel, base_texel, mr, emissive_texel;
+  textures_at(SCENE_CTX m.normal_texture, m.base_color_texture, m.metallic_roughness_texture, m.emissive_texture, s.uv,
+              normal_texel, base_texel, mr, emissive_texel);
+  if (m.normal_texture >= 0) ns = normal_mapped(SCENE_CTX t, m, b, normal_texel, ns, s.ng);
   // Shading normals are interpolated per vertex and may point away from the viewer's side;
   // keep them in the hemisphere of the geometric normal so shading never sees a back face.
   if (dot3(ns, s.ng) < 0.0f) ns = -ns;
   s.ns = ns;
 
-  vec4 base_texel = texture_or_one(SCENE_CTX m.base_color_texture, s.uv);
   vec4 color = triangle_color(SCENE_CTX t, b);
   SST_PRECISE vec3 base = m.base_color * vec3(base_texel.x, base_texel.y, base_texel.z) * vec3(color.x, color.y, color.z);
   s.base_color = base;
-  vec4 mr = texture_or_one(SCENE_CTX m.metallic_roughness_texture, s.uv);
   SST_PRECISE float metallic = m.metallic * mr.z;
   SST_PRECISE float roughness = m.roughness * mr.y;
   s.metallic = metallic;
   s.roughness = roughness;
-  s.emission = triangle_emission(SCENE_CTX tri, b, s.front_face);
+  s.emission = material_emission(m, s.front_face, surface_alpha_of(m, color, base_texel), emissive_texel);
   return s;
 }
 

@@ -16,6 +16,9 @@ struct DeviceInfo {
   uint32_t api_version = 0;  // VK_MAKE_API_VERSION encoding
   uint64_t max_storage_buffer_range = 0;  // bytes
   uint32_t max_compute_workgroup_invocations = 0;
+  // VK_KHR_acceleration_structure and VK_KHR_ray_query with their features: --accel rayquery
+  // can run (gpu/acceleration_structure.h).
+  bool ray_query = false;
 };
 
 // "1.3.230" from a Vulkan API version number.

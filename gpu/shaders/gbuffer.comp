@@ -1,4 +1,4 @@
-#version 450
+#version 460
 #extension GL_GOOGLE_include_directive : require
 // The first-hit pass (G-buffer): per pixel and sample, the camera ray of core/render/camera.cpp
 // jittered by the pixel's Sobol sample (as the CPU's pixel loops do), traced through the flat BVH,
@@ -9,15 +9,13 @@
 #include "core/accel/bvh_layout.h"
 #include "core/render/frame_layout.h"
 SCENE_BUFFERS(0)
-layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+#include "gpu/shaders/scene_accel.glsl"
 layout(std430, binding = 7) writeonly buffer GBuffer { GBufferTexel gbuffer[]; };
 layout(push_constant) uniform Push { ViewParams view; };
-#define BVH_NODE(i) bvh_nodes[i]
-#define BVH_TRIANGLE(i) bvh_triangles[i]
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"
 #include "core/accel/bvh_traverse.h"
+#include "gpu/shaders/ray_queries.glsl"
 #include "core/rng/sobol_sampler.h"
 #include "core/render/pinhole.h"
 
@@ -30,12 +28,11 @@ void main() {
   vec3 albedo = vec3(0.0), normal = vec3(0.0), emission = vec3(0.0);
   float depth = 0.0;
   uint hits = 0u;
-  const float infinity = uintBitsToFloat(0x7F800000u);
   for (uint i = 0u; i < view.spp; ++i) {
     PixelSampler ps = pixel_sampler(view.seed, pixel, view.sample_offset + i);
     vec2 jitter = pixel_sampler_get2d(ps);
     vec3 dir = camera_direction(view, float(xy.x) + jitter.x, float(xy.y) + jitter.y);
-    BvhHit hit = bvh_intersect(view.eye, dir, 0.0, infinity);
+    BvhHit hit = ray_closest_hit(view.eye, dir);
     if (hit.triangle >= BVH_STACK_OVERFLOW) continue;  // a miss (or, never, an overflow)
     Surface s = make_surface(hit.triangle, vec2(hit.u, hit.v), dir);
     albedo += s.base_color;

@@ -1,5 +1,6 @@
-#version 450
+#version 460
 #extension GL_GOOGLE_include_directive : require
+// rayquery build (gpu/CMakeLists.txt)
 // variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23
 // GI-1.0 on the GPU: the stages of core/gi10/gi10_stages.h, one invocation per element, as the
 // CPU's loops run them. Compiled once per stage (gi10_<GI10_STAGE_*>, gpu/CMakeLists.txt): in one
@@ -13,8 +14,7 @@
 #include "core/lights/light_layout.h"
 #include "core/gi10/gi10_layout.h"
 SCENE_BUFFERS(0)
-layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+#include "gpu/shaders/scene_accel.glsl"
 LIGHT_BUFFERS(7)
 layout(std430, binding = 13) readonly buffer FrameConstants { Gi10Frame gi_frame_constants; };
 layout(std430, binding = 14) buffer Pixels { Gi10Pixel gi_pixels_buffer[]; };
@@ -33,8 +33,6 @@ layout(std430, binding = 26) buffer Feedback { vec4 gi_feedback_buffer[]; };
 layout(std430, binding = 27) buffer Counters { uint gi_counters_buffer[]; };
 layout(std430, binding = 28) buffer Output { vec4 gi_output_buffer[]; };
 layout(push_constant) uniform Push { Gi10Push push; };
-#define BVH_NODE(i) bvh_nodes[i]
-#define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON gi_frame_constants.scene_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"

@@ -1,7 +1,8 @@
 // The indirect estimators on the GPU: their hooks (core/manylight/estimator.h) bound to the
 // sampler's buffers and to the flat BVH's shadow rays, each method's estimate
 // (core/manylight/<name>/<name>_estimate.h), and estimate_indirect, the switch over the list of
-// methods (core/manylight/many_light_methods.h) that runs the one SamplerParams.method names.
+// methods (core/manylight/many_light_methods.h) that runs the one SamplerParams.method names (the
+// pipeline's kSpecManyLightMethod where it fixes one, gpu/shaders/specialization.glsl).
 //
 // The includer declares, before including this file:
 //   MANY_LIGHT_BUFFERS(first)     the sampler's inputs (core/manylight/many_light_layout.h)
@@ -10,7 +11,9 @@
 #ifndef SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL
 #define SST_GPU_SHADERS_INDIRECT_SAMPLER_GLSL
 #include "core/vpl/vpl.h"
+#include "gpu/shaders/specialization.glsl"
 #include "core/accel/ray_offset.h"
+#include "gpu/shaders/ray_queries.glsl"
 
 Vpl ml_vpl(uint j) {
   GpuVpl g = ml_vpls[j];
@@ -26,7 +29,7 @@ bool ml_occluded(vec3 x, vec3 ng, vec3 p, vec3 n) {
   vec3 origin, dir;
   float tmax;
   shadow_ray_segment(SCENE_RAY_EPSILON, x, ng, SCENE_RAY_EPSILON, p, n, origin, dir, tmax);
-  return bvh_occluded(origin, dir, 0.0, tmax) != BVH_VISIBLE;
+  return ray_occluded(origin, dir, tmax);
 }
 
 #define ML_CTX_PARAM
@@ -53,7 +56,7 @@ bool ml_occluded(vec3 x, vec3 ng, vec3 p, vec3 n) {
 // ray and the direct light left it. On the CPU, IndirectSampler::estimate calls the same
 // estimate_<name>.
 IndirectEstimate estimate_indirect(ShadingPoint sp, inout PixelSampler ps) {
-  switch (ml_params.method) {
+  switch (kSpecManyLightMethod != kSpecUnset ? kSpecManyLightMethod : ml_params.method) {
 #define ML_ESTIMATE_CASE(name, id) \
   case id:                         \
     return estimate_##name(sp, ps);

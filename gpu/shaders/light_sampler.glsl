@@ -8,6 +8,7 @@
 //   #include "gpu/shaders/light_sampler.glsl"
 #ifndef SST_GPU_SHADERS_LIGHT_SAMPLER_GLSL
 #define SST_GPU_SHADERS_LIGHT_SAMPLER_GLSL
+#include "gpu/shaders/specialization.glsl"
 #include "gpu/shaders/surface.glsl"
 
 #define LIGHT_CTX_PARAM

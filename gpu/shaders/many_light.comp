@@ -1,7 +1,8 @@
-#version 450
+#version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
+// rayquery build (gpu/CMakeLists.txt)
 // The sampling stage of every VPL method on the GPU: the twin of the pixel loop of
 // core/manylight/many_light_method.cpp. Per pixel and sample: the jittered camera ray, the direct
 // light exactly as `pt` with max_bounces = 0 computes it (path_trace.glsl; or rtslc's own from
@@ -19,8 +20,7 @@
 #include "core/manylight/many_light_layout.h"
 #include "core/render/frame_layout.h"
 SCENE_BUFFERS(0)
-layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+#include "gpu/shaders/scene_accel.glsl"
 LIGHT_BUFFERS(7)
 MANY_LIGHT_BUFFERS(13)
 layout(std430, binding = 20) buffer Texels { ManyLightTexel texels[]; };
@@ -30,8 +30,6 @@ layout(std430, binding = 21) buffer DispatchWords { uint dispatch_words[]; };
 layout(std430, binding = 22) readonly buffer SlicesIn { ManyLightSlice slices_in[]; };
 layout(std430, binding = 23) writeonly buffer SlicesOut { ManyLightSlice slices_out[]; };
 layout(push_constant) uniform Push { ManyLightPush push; };
-#define BVH_NODE(i) bvh_nodes[i]
-#define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON push.scene_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"
@@ -80,7 +78,7 @@ void main() {
     Surface hit;
     bool has_hit;
     // rtslc with direct_light = cuts samples the direct light itself (rtslc_direct.h).
-    bool own_direct = ml_params.rtslc_direct_cut_max_size != 0u;
+    bool own_direct = kSpecOwnDirect != kSpecUnset ? kSpecOwnDirect != 0u : ml_params.rtslc_direct_cut_max_size != 0u;
     PathConfig cfg = many_light_direct_config(own_direct, push.diffuse_only != 0u, push.compensation_max_bounces,
                                               push.compensation_rr_min_bounces, ml_params.clamp_distance,
                                               ml_params.clamp_per_depth);

@@ -1,5 +1,6 @@
-#version 450
+#version 460
 #extension GL_GOOGLE_include_directive : require
+// rayquery build (gpu/CMakeLists.txt)
 // The `pt` method on the GPU: the twin of PathTracer::render's pixel loop
 // (core/pt/path_tracer.cpp). Per pixel and sample index: the camera ray jittered by the
 // pixel's Sobol sample, one path (gpu/shaders/path_trace.glsl), non-finite samples dropped and
@@ -14,13 +15,10 @@
 #include "core/lights/light_layout.h"
 #include "core/pt/path_trace_layout.h"
 SCENE_BUFFERS(0)
-layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+#include "gpu/shaders/scene_accel.glsl"
 LIGHT_BUFFERS(7)
 layout(std430, binding = 13) buffer Texels { PathTraceTexel texels[]; };
 layout(push_constant) uniform Push { PathTraceParams params; };
-#define BVH_NODE(i) bvh_nodes[i]
-#define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"

@@ -1,5 +1,6 @@
-#version 450
+#version 460
 #extension GL_GOOGLE_include_directive : require
+// rayquery build (gpu/CMakeLists.txt)
 // variants: PT_WAVE_STAGE 0 1 2 3 4
 // The `pt` method on the GPU as a wavefront: the stages of core/pt/path_stages.h, each a dispatch
 // over a wave of path states kept in a buffer, instead of pt.comp's one invocation per path to its
@@ -17,13 +18,10 @@
 #include "core/lights/light_layout.h"
 #include "core/pt/path_trace_layout.h"
 SCENE_BUFFERS(0)
-layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+#include "gpu/shaders/scene_accel.glsl"
 LIGHT_BUFFERS(7)
 layout(std430, binding = 13) buffer Texels { PathTraceTexel texels[]; };
 layout(push_constant) uniform Push { PathWaveParams wave; };
-#define BVH_NODE(i) bvh_nodes[i]
-#define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON wave.pt.ray_epsilon
 #include "gpu/shaders/surface.glsl"
 #include "core/accel/bvh_traverse.h"

@@ -1,5 +1,6 @@
-#version 450
+#version 460
 #extension GL_GOOGLE_include_directive : require
+// rayquery build (gpu/CMakeLists.txt)
 // The light paths of instant radiosity on the GPU: one invocation traces light path
 // first_path + i (core/vpl/light_path.h, which the CPU runs too), its VPLs into its slots.
 // gpu/vpl_generation_pass.cpp concatenates the paths in index order.
@@ -16,16 +17,13 @@
 #include "core/vpl/light_path_layout.h"
 
 SCENE_BUFFERS(0)
-layout(std430, binding = 5) readonly buffer BvhNodes { BvhNode bvh_nodes[]; };
-layout(std430, binding = 6) readonly buffer BvhTriangles { BvhTriangle bvh_triangles[]; };
+#include "gpu/shaders/scene_accel.glsl"
 layout(std430, binding = 7) writeonly buffer Slots { VplSlot slots[]; };
 layout(std430, binding = 8) writeonly buffer Paths { uvec2 paths[]; };
 LIGHT_BUFFERS(9)
 
 layout(push_constant) uniform Push { VplGenerationPush params; };
 
-#define BVH_NODE(i) bvh_nodes[i]
-#define BVH_TRIANGLE(i) bvh_triangles[i]
 #define SCENE_RAY_EPSILON params.ray_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"

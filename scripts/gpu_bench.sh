@@ -4,7 +4,9 @@
 # (the VPL methods with 100k VPLs, as the SST paper's Tables 2-3) --repeat times, and the table
 # gives the medians of the host wall time of each stage and of the device timestamps
 # (method_counters.gpu_ms, of the last repetition); the frame time is the timestamps' sum where the
-# method has them. The host times of the first repetition include the driver's shader compilation
+# method has them. GI-1.0's stages, timed by the timestamps, are shown in the paper's three
+# buckets (ray tracing, caching and sampling, interpolation and denoising) beside the G-buffer,
+# the direct light and the composition. The host times of the first repetition include the driver's shader compilation
 # (lavapipe compiles when a pipeline is first dispatched), so --repeat should be 3 or more.
 #
 # Needs: build/sst-render (or --bin), the Vulkan loader and a driver, python3, and the scenes
@@ -67,7 +69,10 @@ for path in sorted(glob.glob(os.path.join(out, "*.json"))):
     t = {k: v["median"] for k, v in d["timings_ms"].items()}
     frame = sum(v for k, v in t.items() if k not in setup)
     stages = ", ".join(f"{k} {v:.1f}" for k, v in t.items() if k not in setup)
-    gpu = d.get("method_counters", {}).get("gpu_ms", {})
+    mc = d.get("method_counters", {})
+    if "buckets_ms" in mc:  # GI-1.0: its stages in the paper's buckets (core/gi10/gi10_method.cpp)
+        stages = ", ".join(f"{k} {v:.1f}" for k, v in mc["buckets_ms"].items())
+    gpu = mc.get("gpu_ms", {})
     if isinstance(gpu, dict) and gpu:
         # pt's wavefront lists its stages beside their sum ("render"): count that once.
         frame = gpu["render"] if "render" in gpu else sum(gpu.values())

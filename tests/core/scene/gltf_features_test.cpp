@@ -50,6 +50,10 @@ std::vector<std::string> backends() {
   std::vector<std::string> out = {"cpu", "cpu-flat"};
 #ifdef SST_HAVE_VULKAN
   if (test::gpu_unavailable("pt").empty()) out.push_back("vulkan");
+  // The device's ray queries: alpha-masked geometry is non-opaque there, each candidate hit tested.
+  std::vector<DeviceInfo> devices = list_vulkan_devices();
+  if (test::gpu_unavailable("pt_rq").empty() && !devices.empty() && devices[0].ray_query)
+    out.push_back("vulkan-rayquery");
 #endif
   return out;
 }
@@ -57,8 +61,8 @@ std::vector<std::string> backends() {
 Measured render(const Scene& scene, const std::string& backend) {
   RenderOptions options;
   options.method = "pt";
-  options.backend = backend == "vulkan" ? "vulkan" : "cpu";
-  options.accel = backend == "cpu-flat" ? "flat" : "embree";
+  options.backend = backend.rfind("vulkan", 0) == 0 ? "vulkan" : "cpu";
+  options.accel = backend == "cpu-flat" ? "flat" : (backend == "vulkan-rayquery" ? "rayquery" : "embree");
   options.width = kSize;
   options.height = kSize;
   options.spp = kSpp;

@@ -65,23 +65,18 @@ SST_FUNC vec4 triangle_color(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, vec2 b) {
   return r;
 }
 
-// Material m's alpha on triangle t at b: the factor times the base-colour texture's alpha times
-// COLOR_0's.
-SST_FUNC float surface_alpha(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(SceneMaterial) m, vec2 b) {
-  SST_PRECISE float a = m.alpha * triangle_color(SCENE_CTX t, b).w;
-  if (m.base_color_texture >= 0) {
-    SST_PRECISE float texel_alpha = SCENE_TEXTURE_SAMPLE(m.base_color_texture, triangle_uv(SCENE_CTX t, b)).w;
-    a = a * texel_alpha;
-  }
-  return a;
-}
-
-// surface_alpha from COLOR_0 at the point and the base-colour texel there (vec4(1) without a
-// texture), where the caller has sampled that texture already.
+// Material m's alpha at a point whose COLOR_0 is `color` and whose base-colour texel is
+// `base_texel` (vec4(1) without a texture): the factor times the texture's alpha times COLOR_0's.
 SST_FUNC float surface_alpha_of(SST_IN(SceneMaterial) m, vec4 color, vec4 base_texel) {
   SST_PRECISE float a = m.alpha * color.w;
   if (m.base_color_texture >= 0) a = a * base_texel.w;
   return a;
+}
+
+// The same on triangle t at b.
+SST_FUNC float surface_alpha(SCENE_CTX_PARAM SST_IN(SceneTriangle) t, SST_IN(SceneMaterial) m, vec2 b) {
+  vec4 base_texel = texture_or_one(SCENE_CTX m.base_color_texture, triangle_uv(SCENE_CTX t, b));
+  return surface_alpha_of(m, triangle_color(SCENE_CTX t, b), base_texel);
 }
 
 // Whether a hit on triangle tri at barycentrics b counts: the alpha test of glTF's MASK (and of

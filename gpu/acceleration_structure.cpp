@@ -201,7 +201,7 @@ GpuAccelerationStructure::GpuAccelerationStructure(const VulkanContext& context,
     submit.commandBufferCount = 1;
     submit.pCommandBuffers = &cmd;
     check(vkQueueSubmit(context.compute_queue(), 1, &submit, fence), "submit");
-    check(vkWaitForFences(dev, 1, &fence, VK_TRUE, uint64_t(600) * 1000000000ull), "build (waiting for it)");
+    wait_for_device(context, fence, 120.0, "acceleration structure build");
     uint64_t stamps[2] = {0, 0};
     check(vkGetQueryPoolResults(dev, queries, 0, 2, sizeof(stamps), stamps, sizeof(uint64_t),
                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),

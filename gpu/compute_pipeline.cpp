@@ -176,10 +176,7 @@ double ComputePipeline::dispatch(const std::vector<const GpuBuffer*>& buffers, c
   submit.pCommandBuffers = &commands_;
   check(vkResetFences(dev, 1, &fence_), "reset fence");
   check(vkQueueSubmit(context_.compute_queue(), 1, &submit, fence_), "submit " + name_);
-  VkResult waited = vkWaitForFences(dev, 1, &fence_, VK_TRUE, uint64_t(timeout_s * 1e9));
-  if (waited == VK_TIMEOUT)
-    throw Error("shader " + name_ + " did not finish within " + std::to_string(int(timeout_s)) + " s (GPU hang?)");
-  check(waited, "shader " + name_);
+  wait_for_device(context_, fence_, timeout_s, "shader " + name_);
   uint64_t stamps[2] = {0, 0};
   check(vkGetQueryPoolResults(dev, queries_, 0, 2, sizeof stamps, stamps, sizeof(uint64_t),
                               VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),

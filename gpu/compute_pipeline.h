@@ -35,8 +35,9 @@ class ComputePipeline {
   ComputePipeline& operator=(const ComputePipeline&) = delete;
 
   // Runs groups_x * groups_y workgroups with `buffers` bound in order and `push` (of the size
-  // given at creation) as push constants. Waits at most `timeout_s`: a device that hangs or is
-  // lost is an sst::Error, never a hung process. Returns the GPU time in ms (timestamps).
+  // given at creation) as push constants. Waits at most `timeout_s` (wait_for_device: a lost
+  // device is an sst::Error, a hung one ends the process with one line, never a hung process).
+  // Returns the GPU time in ms (timestamps).
   double dispatch(const std::vector<const GpuBuffer*>& buffers, const void* push, uint32_t groups_x,
                   uint32_t groups_y = 1, double timeout_s = 120.0);
 

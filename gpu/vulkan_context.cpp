@@ -1,5 +1,7 @@
 #include "gpu/vulkan_context.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include "core/util/error.h"
@@ -233,6 +235,19 @@ VulkanContext::VulkanContext(int device_index) {
     destroy();
     throw;
   }
+}
+
+void wait_for_device(const VulkanContext& context, VkFence fence, double timeout_s, const std::string& what) {
+  if (context.info().type == "cpu") timeout_s *= 10.0;
+  VkResult r = vkWaitForFences(context.device(), 1, &fence, VK_TRUE, uint64_t(timeout_s * 1e9));
+  if (r == VK_TIMEOUT) {
+    std::fprintf(stderr, "error: %s did not finish within %.0f s on %s (device hang?); exiting\n", what.c_str(),
+                 timeout_s, context.info().name.c_str());
+    std::fflush(nullptr);
+    std::_Exit(1);
+  }
+  if (r == VK_ERROR_DEVICE_LOST) throw Error(what + ": the GPU device was lost");
+  check(r, what.c_str());
 }
 
 VulkanContext::~VulkanContext() { destroy(); }

@@ -4,6 +4,7 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <string>
 #include <vector>
 
 #include "core/util/device_info.h"
@@ -52,5 +53,13 @@ class VulkanContext {
   VkQueue compute_queue_ = VK_NULL_HANDLE;
   uint32_t compute_queue_family_ = 0;
 };
+
+// Waits for `fence` of work submitted to `context`'s queue. A device error is an sst::Error. When
+// the work has not finished after `timeout_s` seconds (a hung device), the process ends at once
+// with one line on stderr naming `what` and exit code 1: the work still uses the buffers it was
+// given, and unwinding would free them under it (lavapipe then wrote into freed memory). On a
+// device that runs on the CPU (lavapipe) the limit is 10 times longer, since the first dispatch of
+// a pipeline includes its compilation there.
+void wait_for_device(const VulkanContext& context, VkFence fence, double timeout_s, const std::string& what);
 
 }  // namespace sst::gpu

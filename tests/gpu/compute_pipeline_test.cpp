@@ -43,6 +43,24 @@ TEST(ComputePipeline, GlslRngsDrawTheSameBitsAsTheCpp) {
   }
 }
 
+// A dispatch that outlives its timeout ends the process with one line: throwing would unwind and
+// free the buffers the device still writes (Mesa 25's lavapipe, compiling many_light.comp for 6
+// minutes inside a 120 s wait, then wrote through freed memory and crashed sst-render).
+TEST(ComputePipelineDeathTest, ATimedOutDispatchExitsWithOneLine) {
+  SKIP_WITHOUT_GPU("rng_test");
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  auto dispatch_with_no_time = [] {
+    VulkanContext context(0);
+    const uint32_t count = 1u << 20;
+    GpuBuffer out(context, size_t(count) * 8 * sizeof(uint32_t));
+    ComputePipeline pipeline(context, "rng_test", 1, 8);
+    uint32_t push[2] = {1u, count};
+    pipeline.dispatch({&out}, push, count / 64, 1, 1e-9);
+  };
+  EXPECT_EXIT(dispatch_with_no_time(), ::testing::ExitedWithCode(1),
+              "error: shader rng_test did not finish within 0 s on .*device hang");
+}
+
 TEST(ComputePipeline, BuffersBeyondTheDeviceLimitAreRefusedWithAMessage) {
   SKIP_WITHOUT_GPU("rng_test");
   VulkanContext context(0);

@@ -21,18 +21,21 @@ void check(VkResult result, const std::string& what) {
 ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string& shader, uint32_t buffer_count,
                                  uint32_t push_constant_bytes, std::vector<uint32_t> specialization,
                                  VkAccelerationStructureKHR top_level)
-    : context_(context), name_(shader), buffer_count_(buffer_count), push_bytes_(push_constant_bytes),
+    : context_(context),
+      name_(top_level ? shader + "_rq" : shader),
+      buffer_count_(buffer_count),
+      push_bytes_(push_constant_bytes),
       top_level_(top_level) {
   if (top_level && buffer_count <= kTopLevelBinding)
-    throw Error("shader " + shader + ": an acceleration structure needs binding " + std::to_string(kTopLevelBinding));
+    throw Error("shader " + name_ + ": an acceleration structure needs binding " + std::to_string(kTopLevelBinding));
   VkDevice dev = context.device();
-  std::span<const uint32_t> spirv = embedded_spirv(shader);
-  if (spirv.empty()) throw Error("shader '" + shader + "' is not built in (was glslc found at configure time?)");
+  std::span<const uint32_t> spirv = embedded_spirv(name_);
+  if (spirv.empty()) throw Error("shader '" + name_ + "' is not built in (was glslc found at configure time?)");
   VkShaderModuleCreateInfo module_info{};
   module_info.sType = VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO;
   module_info.codeSize = spirv.size_bytes();
   module_info.pCode = spirv.data();
-  check(vkCreateShaderModule(dev, &module_info, nullptr, &module_), "shader " + shader);
+  check(vkCreateShaderModule(dev, &module_info, nullptr, &module_), "shader " + name_);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings(buffer_count);
   for (uint32_t i = 0; i < buffer_count; ++i)
@@ -63,7 +66,7 @@ ComputePipeline::ComputePipeline(const VulkanContext& context, const std::string
                                  specialization.data()};
   if (!specialization.empty()) pipe_info.stage.pSpecializationInfo = &spec_info;
   pipe_info.layout = layout_;
-  check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_), "pipeline " + shader);
+  check(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &pipe_info, nullptr, &pipeline_), "pipeline " + name_);
 
   VkDescriptorPoolSize pool_sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, std::max(buffer_count, 1u)},
                                         {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1u}};

@@ -12,17 +12,14 @@
 
 namespace sst::gpu {
 
-// A specialization constant left to its run-time value (kSpecUnset in GLSL).
-constexpr uint32_t kSpecUnset = 0xFFFFFFFFu;
-
 class ComputePipeline {
  public:
   // `shader`: an embedded shader's name (shader_library.h); sst::Error when it is missing.
-  // `specialization`: the values of the shader's specialization constants 0, 1, ...
-  // (gpu/shaders/specialization.glsl; kSpecUnset leaves one to its run-time value).
-  // `top_level`: an acceleration structure that binding kTopLevelBinding holds instead of a
-  // buffer (the ray-query kernels, gpu/shaders/ray_queries.glsl); dispatch() ignores the buffer
-  // given for that binding.
+  // `specialization`: the values of the shader's specialization constants, by the ids of
+  // gpu/shaders/specialization_ids.h (SST_SPEC_UNSET leaves one to its run-time value).
+  // `top_level`: the scene's acceleration structure; the pipeline is then the shader's ray-query
+  // build (<shader>_rq, gpu/shaders/ray_queries.glsl) with the structure at binding
+  // kTopLevelBinding, and dispatch() ignores the buffer given for that binding.
   ComputePipeline(const VulkanContext& context, const std::string& shader, uint32_t buffer_count,
                   uint32_t push_constant_bytes, std::vector<uint32_t> specialization = {},
                   VkAccelerationStructureKHR top_level = VK_NULL_HANDLE);

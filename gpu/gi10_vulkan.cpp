@@ -21,7 +21,7 @@ FrameOutput VulkanGi10::render(const RenderContext& context, const GpuRenderCont
   gpu_ = &gpu;
   if (!direct_pipeline_) {
     timer.time("shader_compile", [&] {
-      direct_pipeline_ = make_path_trace_pipeline(gpu);
+      direct_pipeline_ = make_path_trace_pipeline(gpu.vulkan(), gpu.lights(), gpu.top_level());
       for (uint32_t stage = 0; stage < GI10_STAGES; ++stage)
         pipelines_.push_back(gpu.make_pipeline("gi10_" + std::to_string(stage),
                                                uint32_t(GpuRenderContext::kSceneBufferCount + kBufferCount),

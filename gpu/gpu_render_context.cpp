@@ -33,11 +33,8 @@ GpuRenderContext::GpuRenderContext(int device, const Scene& scene, const LightSa
 std::unique_ptr<ComputePipeline> GpuRenderContext::make_pipeline(const std::string& shader, uint32_t buffer_count,
                                                                  uint32_t push_constant_bytes,
                                                                  std::vector<uint32_t> specialization) const {
-  if (!structure_)
-    return std::make_unique<ComputePipeline>(vulkan_, shader, buffer_count, push_constant_bytes,
-                                             std::move(specialization));
-  return std::make_unique<ComputePipeline>(vulkan_, shader + "_rq", buffer_count, push_constant_bytes,
-                                           std::move(specialization), structure_->top_level());
+  return std::make_unique<ComputePipeline>(vulkan_, shader, buffer_count, push_constant_bytes,
+                                           std::move(specialization), top_level());
 }
 
 std::vector<const GpuBuffer*> GpuRenderContext::scene_buffers() const {

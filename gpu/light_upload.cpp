@@ -6,6 +6,7 @@
 #include "gpu/light_upload.h"
 
 #include "core/util/error.h"
+#include "gpu/shaders/specialization_ids.h"
 
 namespace sst::gpu {
 
@@ -45,6 +46,12 @@ std::vector<const GpuBuffer*> GpuLights::buffers() const {
 size_t GpuLights::bytes() const {
   return header_buffer_->size() + punctual_->size() + distribution_->size() + emissive_->size() +
          light_of_triangle_->size() + tree_->size();
+}
+
+std::vector<uint32_t> GpuLights::sampler_specialization() const {
+  std::vector<uint32_t> values(SST_SPEC_COUNT, SST_SPEC_UNSET);
+  values[SST_SPEC_LIGHT_SAMPLER] = header_.sampler_kind;
+  return values;
 }
 #endif  // SST_HAVE_VULKAN
 

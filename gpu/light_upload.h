@@ -41,6 +41,9 @@ class GpuLights {
   // Bindings first .. first + 5 of a shader that declares LIGHT_BUFFERS(first).
   std::vector<const GpuBuffer*> buffers() const;
   const glsl::LightHeader& header() const { return header_; }
+  // The specialization constants (gpu/shaders/specialization_ids.h) of a pipeline that samples
+  // these lights: their sampler fixed, the others left to their run-time values.
+  std::vector<uint32_t> sampler_specialization() const;
   size_t bytes() const;
 
  private:

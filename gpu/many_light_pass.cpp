@@ -1,11 +1,13 @@
 #include "gpu/many_light_pass.h"
 
 #include <algorithm>
+#include <utility>
 
 #include "core/accel/bvh_layout.h"
 #include "gpu/compute_pipeline.h"
 #include "core/render/camera.h"
 #include "gpu/sample_chunks.h"
+#include "gpu/shaders/specialization_ids.h"
 #include "core/render/frame_layout.h"
 #include "core/manylight/many_light_method.h"
 
@@ -41,9 +43,10 @@ void write_pixel(const glsl::ManyLightTexel& t, int x, int y, int spp, FrameOutp
 constexpr uint32_t kBufferCount = GpuRenderContext::kSceneBufferCount + kManyLightBufferCount + 4;
 
 std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext& gpu, const SamplerParams& params) {
-  return gpu.make_pipeline("many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)),
-                           {gpu.lights().header().sampler_kind, params.method,
-                            params.rtslc_direct_cut_max_size != 0u ? 1u : 0u});
+  std::vector<uint32_t> specialization = gpu.lights().sampler_specialization();
+  specialization[SST_SPEC_MANY_LIGHT_METHOD] = params.method;
+  specialization[SST_SPEC_OWN_DIRECT] = params.rtslc_direct_cut_max_size != 0u ? 1u : 0u;
+  return gpu.make_pipeline("many_light", kBufferCount, uint32_t(sizeof(ManyLightPush)), std::move(specialization));
 }
 
 ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,

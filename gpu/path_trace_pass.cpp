@@ -92,15 +92,11 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   return out;
 }
 
-std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context, const GpuLights& lights) {
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context, const GpuLights& lights,
+                                                          VkAccelerationStructureKHR top_level) {
   return std::make_unique<ComputePipeline>(context, "pt", GpuRenderContext::kSceneBufferCount + 1,
-                                           uint32_t(sizeof(glsl::PathTraceParams)),
-                                           std::vector<uint32_t>{lights.header().sampler_kind});
-}
-
-std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const GpuRenderContext& gpu) {
-  return gpu.make_pipeline("pt", GpuRenderContext::kSceneBufferCount + 1, uint32_t(sizeof(glsl::PathTraceParams)),
-                           {gpu.lights().header().sampler_kind});
+                                           uint32_t(sizeof(glsl::PathTraceParams)), lights.sampler_specialization(),
+                                           top_level);
 }
 
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
@@ -115,7 +111,7 @@ std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const GpuR
   for (int stage = 0; stage < 5; ++stage)
     out->stages[stage] =
         gpu.make_pipeline("pt_wavefront_" + std::to_string(stage), GpuRenderContext::kSceneBufferCount + 3,
-                          uint32_t(sizeof(glsl::PathWaveParams)), {gpu.lights().header().sampler_kind});
+                          uint32_t(sizeof(glsl::PathWaveParams)), gpu.lights().sampler_specialization());
   return out;
 }
 

@@ -41,11 +41,10 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
                                       bool diffuse_only, ComputePipeline* pipeline = nullptr);
 
-// pt.comp compiled by the driver for `lights`' sampler, tracing the flat BVH.
-std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context, const GpuLights& lights);
-// The same for the render context `gpu` (its ray queries where it uses them), for the overload
-// below (sst-render times it as its own stage).
-std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const GpuRenderContext& gpu);
+// pt.comp compiled by the driver for `lights`' sampler, tracing the flat BVH or, given the scene's
+// acceleration structure, ray queries (sst-render times it as its own stage).
+std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& context, const GpuLights& lights,
+                                                          VkAccelerationStructureKHR top_level = VK_NULL_HANDLE);
 
 // The same with everything uploaded once per render (gpu/gpu_render_context.h) and the pipeline made.
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,

@@ -14,10 +14,11 @@ FrameOutput VulkanPathTracer::render(const RenderContext& ctx, const GpuRenderCo
                                           ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
     });
   } else {
-    auto pipeline = timer.time("shader_compile", [&] { return make_path_trace_pipeline(gpu); });
+    auto pipeline = timer.time("shader_compile",
+                               [&] { return make_path_trace_pipeline(gpu.vulkan(), gpu.lights(), gpu.top_level()); });
     r = timer.time("render", [&] {
-      return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
-                                ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
+      return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed, ctx.options.spp,
+                                method_.tracer_params(), ctx.options.diffuse_only);
     });
   }
   nlohmann::json gpu_ms = {{"render", r.gpu_ms}};

@@ -122,8 +122,8 @@ VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene
     const size_t slots_binding = buffers.size();
     buffers.resize(slots_binding + 2);  // slots and path records, bound per batch
     for (const GpuBuffer* b : lights.buffers()) buffers.push_back(b);
-    ComputePipeline pipeline(context, top_level ? "vpl_generation_rq" : "vpl_generation", uint32_t(buffers.size()),
-                             sizeof(VplGenerationPush), {}, top_level);
+    ComputePipeline pipeline(context, "vpl_generation", uint32_t(buffers.size()), sizeof(VplGenerationPush), {},
+                             top_level);
     uint64_t capacity = batch_capacity(context, max_bounces);
     if (max_batch_paths > 0) capacity = std::min(capacity, max_batch_paths);
     VplGenerationPush push{seed, 0, 0, uint32_t(max_bounces), uint32_t(params.vpl_min_bounces), diffuse_only ? 1u : 0u,

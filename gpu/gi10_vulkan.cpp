@@ -106,7 +106,7 @@ FrameOutput VulkanGi10::direct(const RenderContext& context, StageTimer& timer) 
   PathTracerParams p;
   p.max_bounces = 0;
   return timer.time("render", [&] { return render_path_tracer(*gpu_, *direct_pipeline_, context.camera, context.width, context.height,
-                            context.options.seed, context.options.spp, p, context.options.diffuse_only)
+                            context.options.seed, context.options.spp, p, render_flags(context.options))
       .frame; });
 }
 

@@ -50,7 +50,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu, in.params); });
   ManyLightPassOutput out = timer.time("sampling", [&] {
     return render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
-                             ctx.options.diffuse_only, vpl_params.clamp_compensation ? vpl_params.vpl_max_bounces : 0,
+                             render_flags(ctx.options), vpl_params.clamp_compensation ? vpl_params.vpl_max_bounces : 0,
                              vpl_params.vpl_min_bounces, frame);
   });
 

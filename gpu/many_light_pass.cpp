@@ -51,7 +51,7 @@ std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext
 
 ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,
                                       const GpuManyLightInputs& inputs, const PinholeCamera& camera, uint32_t seed,
-                                      int spp, bool diffuse_only, int compensation_max_bounces,
+                                      int spp, uint32_t path_flags, int compensation_max_bounces,
                                       int compensation_rr_min_bounces, FrameOutput& frame) {
   const int width = frame.color.width, height = frame.color.height;
   const size_t pixels = size_t(width) * size_t(height);
@@ -86,7 +86,7 @@ ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeli
 
   ManyLightPassOutput out;
 
-  ManyLightPush push{view_params(camera, width, height, seed), gpu.ray_epsilon(), diffuse_only ? 1u : 0u, 0u,
+  ManyLightPush push{view_params(camera, width, height, seed), gpu.ray_epsilon(), path_flags, 0u,
                      0xFFFFFFFFu, ML_SLICE_FIRST | ML_SLICE_LAST, compensation_max_bounces,
                      compensation_rr_min_bounces};
   const uint32_t groups_x = (uint32_t(width) + 7) / 8, groups_y = (uint32_t(height) + 7) / 8;

@@ -35,7 +35,7 @@ std::unique_ptr<ComputePipeline> make_many_light_pipeline(const GpuRenderContext
 // compensation_rr_min_bounces: many_light_direct_config's (core/manylight/direct_pass.h).
 ManyLightPassOutput render_many_light(const GpuRenderContext& gpu, ComputePipeline& pipeline,
                                       const GpuManyLightInputs& inputs, const PinholeCamera& camera, uint32_t seed,
-                                      int spp, bool diffuse_only, int compensation_max_bounces,
+                                      int spp, uint32_t path_flags, int compensation_max_bounces,
                                       int compensation_rr_min_bounces, FrameOutput& frame);
 
 }  // namespace sst::gpu

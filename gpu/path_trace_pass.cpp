@@ -46,13 +46,13 @@ void check_size(int width, int height, int spp) {
 }
 
 glsl::PathTraceParams push_params(const PinholeCamera& camera, int width, int height, uint32_t seed, float ray_epsilon,
-                                  const PathTracerParams& params, bool diffuse_only) {
+                                  const PathTracerParams& params, uint32_t path_flags) {
   glsl::PathTraceParams push{};
   push.view = view_params(camera, width, height, seed);
   push.ray_epsilon = ray_epsilon;
   push.max_bounces = params.max_bounces;
   push.rr_min_bounces = params.rr_min_bounces;
-  push.diffuse_only = diffuse_only ? 1u : 0u;
+  push.path_flags = path_flags;
   return push;
 }
 
@@ -61,7 +61,7 @@ glsl::PathTraceParams push_params(const PinholeCamera& camera, int width, int he
 GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                                       const GpuLights& lights, float ray_epsilon, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
-                                      bool diffuse_only, ComputePipeline* pipeline) {
+                                      uint32_t path_flags, ComputePipeline* pipeline) {
   check_size(width, height, spp);
   const size_t pixels = size_t(width) * size_t(height);
   std::unique_ptr<GpuBuffer> texel_buffer = make_buffer(
@@ -73,7 +73,7 @@ GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuSce
   for (const GpuBuffer* b : lights.buffers()) buffers.push_back(b);
   buffers.push_back(&texels);
 
-  glsl::PathTraceParams push = push_params(camera, width, height, seed, ray_epsilon, params, diffuse_only);
+  glsl::PathTraceParams push = push_params(camera, width, height, seed, ray_epsilon, params, path_flags);
 
   std::unique_ptr<ComputePipeline> own;
   if (!pipeline) pipeline = (own = make_path_trace_pipeline(context, lights)).get();
@@ -101,9 +101,9 @@ std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& c
 
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
-                                      bool diffuse_only) {
+                                      uint32_t path_flags) {
   return render_path_tracer(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), gpu.ray_epsilon(), camera, width,
-                            height, seed, spp, params, diffuse_only, &pipeline);
+                            height, seed, spp, params, path_flags, &pipeline);
 }
 
 std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const GpuRenderContext& gpu) {
@@ -117,7 +117,7 @@ std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const GpuR
 
 GpuPathTraceResult render_path_tracer_wavefront(const GpuRenderContext& gpu, PathWavefrontPipelines& pipelines,
                                                const PinholeCamera& camera, int width, int height, uint32_t seed,
-                                               int spp, const PathTracerParams& params, bool diffuse_only) {
+                                               int spp, const PathTracerParams& params, uint32_t path_flags) {
   check_size(width, height, spp);
   const VulkanContext& context = gpu.vulkan();
   const size_t pixels = size_t(width) * size_t(height);
@@ -135,7 +135,7 @@ GpuPathTraceResult render_path_tracer_wavefront(const GpuRenderContext& gpu, Pat
   buffers.push_back(status.get());
 
   glsl::PathWaveParams push{};
-  push.pt = push_params(camera, width, height, seed, gpu.ray_epsilon(), params, diffuse_only);
+  push.pt = push_params(camera, width, height, seed, gpu.ray_epsilon(), params, path_flags);
   push.pt.view.spp = 1u;
   GpuPathTraceResult out;
   const char* names[5] = {"camera", "shade", "shadow", "bounce", "accumulate"};

@@ -32,14 +32,15 @@ struct GpuPathTraceResult {
 };
 
 // Renders `spp` camera paths per pixel (sample indices 0..spp-1 of pixel_sampler(seed, pixel, i)),
-// as PathTracer::render does with the same seed, params and diffuse_only. `ray_epsilon` is
+// as PathTracer::render does with the same seed, params and options (`path_flags`: render_flags of
+// the options, core/render/render_options.h). `ray_epsilon` is
 // scene_ray_epsilon(scene) (core/accel/embree_accel.h). Samples are dispatched in chunks (the
 // first of one sample per pixel, the rest sized from its time; gpu/sample_chunks.h), so no single
 // dispatch runs long. Bindings of pt.comp: 0..4 scene, 5..6 BVH, 7..12 lights, 13 the texels.
 GpuPathTraceResult render_path_tracer(const VulkanContext& context, const GpuScene& scene, const GpuBvh& bvh,
                                       const GpuLights& lights, float ray_epsilon, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
-                                      bool diffuse_only, ComputePipeline* pipeline = nullptr);
+                                      uint32_t path_flags, ComputePipeline* pipeline = nullptr);
 
 // pt.comp compiled by the driver for `lights`' sampler, tracing the flat BVH or, given the scene's
 // acceleration structure, ray queries (sst-render times it as its own stage).
@@ -49,7 +50,7 @@ std::unique_ptr<ComputePipeline> make_path_trace_pipeline(const VulkanContext& c
 // The same with everything uploaded once per render (gpu/gpu_render_context.h) and the pipeline made.
 GpuPathTraceResult render_path_tracer(const GpuRenderContext& gpu, ComputePipeline& pipeline, const PinholeCamera& camera,
                                       int width, int height, uint32_t seed, int spp, const PathTracerParams& params,
-                                      bool diffuse_only);
+                                      uint32_t path_flags);
 
 // The wavefront (gpu/shaders/pt_wavefront.comp): the same image bits as the megakernel, each stage
 // of the paths a dispatch of its own over waves of at most kPathWavePaths paths (one sample of a
@@ -61,6 +62,6 @@ struct PathWavefrontPipelines {
 std::unique_ptr<PathWavefrontPipelines> make_path_wavefront_pipelines(const GpuRenderContext& gpu);
 GpuPathTraceResult render_path_tracer_wavefront(const GpuRenderContext& gpu, PathWavefrontPipelines& pipelines,
                                                const PinholeCamera& camera, int width, int height, uint32_t seed,
-                                               int spp, const PathTracerParams& params, bool diffuse_only);
+                                               int spp, const PathTracerParams& params, uint32_t path_flags);
 
 }  // namespace sst::gpu

@@ -11,14 +11,14 @@ FrameOutput VulkanPathTracer::render(const RenderContext& ctx, const GpuRenderCo
     auto pipelines = timer.time("shader_compile", [&] { return make_path_wavefront_pipelines(gpu); });
     r = timer.time("render", [&] {
       return render_path_tracer_wavefront(gpu, *pipelines, ctx.camera, ctx.width, ctx.height, ctx.options.seed,
-                                          ctx.options.spp, method_.tracer_params(), ctx.options.diffuse_only);
+                                          ctx.options.spp, method_.tracer_params(), render_flags(ctx.options));
     });
   } else {
     auto pipeline = timer.time("shader_compile",
                                [&] { return make_path_trace_pipeline(gpu.vulkan(), gpu.lights(), gpu.top_level()); });
     r = timer.time("render", [&] {
       return render_path_tracer(gpu, *pipeline, ctx.camera, ctx.width, ctx.height, ctx.options.seed, ctx.options.spp,
-                                method_.tracer_params(), ctx.options.diffuse_only);
+                                method_.tracer_params(), render_flags(ctx.options));
     });
   }
   nlohmann::json gpu_ms = {{"render", r.gpu_ms}};

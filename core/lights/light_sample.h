@@ -243,15 +243,15 @@ SST_FUNC bool light_sample_punctual(vec3 p, SST_IN(LightPunctual) light, float p
   return true;
 }
 
+// `b` receives the point's barycentrics on the triangle (the point is barycentric_mix3 of them).
 SST_FUNC bool light_sample_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint k, float pick, vec2 u,
-                                    SST_INOUT(LightSample) s) {
+                                    SST_INOUT(LightSample) s, SST_OUT(vec2) b) {
   LightEmissive e = LIGHT_EMISSIVE(k);
   uint tri = e.triangle;
   vec3 v0;
   vec3 v1;
   vec3 v2;
   light_triangle_vertices(SCENE_CTX tri, v0, v1, v2);
-  vec2 b;
   float solid_angle_pdf = 0.0f;
   bool spherical = uses_solid_angle_sampling(p, v0, v1, v2) &&
                    sample_spherical_triangle(p, v0, v1, v2, u, b, solid_angle_pdf);
@@ -294,27 +294,39 @@ SST_FUNC LightSample light_sample_none() {
 // A point on light `index` (a distribution entry) for shading point p, the light chosen with
 // probability `pick` (folded into LightSample::pdf) and u the 2D sample for the point (u.x is
 // free for the triangle's position only when the pick did not use it, or remapped it).
-// Returns false when the light sends nothing to p.
+// Returns false when the light sends nothing to p. `b`: the barycentrics of a triangle's point.
 SST_FUNC bool light_sample_entry(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint index, float pick, vec2 u,
-                                 SST_OUT(LightSample) s) {
+                                 SST_OUT(LightSample) s, SST_OUT(vec2) b) {
   s = light_sample_none();
+  b = vec2(0.0f);
   uint punctual_count = LIGHT_HEADER.punctual_count;
   if (index < punctual_count) return light_sample_punctual(p, LIGHT_PUNCTUAL(index), pick, s);
-  return light_sample_triangle(SCENE_CTX LIGHT_CTX p, index - punctual_count, pick, u, s);
+  return light_sample_triangle(SCENE_CTX LIGHT_CTX p, index - punctual_count, pick, u, s, b);
 }
 
 // A light for shading point p with shading normal n (0: none; the tree samplers' receiver
 // cosine) with one 2D sample (u.x picks the light and is reused, remapped, for the point on it).
 // Returns false when no light can contribute.
-SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 u, SST_OUT(LightSample) s) {
+// `light` receives the distribution entry and `b` the barycentrics of a triangle's point: what
+// names the sample apart from p (ReSTIR's reservoirs keep it, core/restir/restir_di_stages.h).
+SST_FUNC bool light_sample_at(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 u, SST_OUT(LightSample) s,
+                              SST_OUT(uint) light, SST_OUT(vec2) b) {
   float u1;
   float pick;
-  uint index = light_pick_for(LIGHT_CTX p, n, u.x, pick, u1);
-  if (index == LIGHT_NONE) {
+  light = light_pick_for(LIGHT_CTX p, n, u.x, pick, u1);
+  b = vec2(0.0f);
+  if (light == LIGHT_NONE) {
     s = light_sample_none();
     return false;
   }
-  return light_sample_entry(SCENE_CTX LIGHT_CTX p, index, pick, vec2(u1, u.y), s);
+  return light_sample_entry(SCENE_CTX LIGHT_CTX p, light, pick, vec2(u1, u.y), s, b);
+}
+
+// light_sample_at without naming the sample.
+SST_FUNC bool light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, vec3 n, vec2 u, SST_OUT(LightSample) s) {
+  uint light;
+  vec2 b;
+  return light_sample_at(SCENE_CTX LIGHT_CTX p, n, u, s, light, b);
 }
 
 // The solid-angle pdf with which light_sample(p, n, ...) picks the point y (geometric normal

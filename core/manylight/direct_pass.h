@@ -10,16 +10,18 @@
 
 SST_BEGIN
 
-// compensation_max_bounces 0: no compensation; else VplParams::vpl_max_bounces, with
-// compensation_rr_min_bounces = vpl_min_bounces. clamp_distance and clamp_per_depth: VplStats'.
-SST_FUNC PathConfig many_light_direct_config(bool own_direct, bool diffuse_only, int compensation_max_bounces,
+// direct_elsewhere: the first hit's direct light is estimated by the method itself (rtslc's cuts) or
+// by ReSTIR DI, not by the path. compensation_max_bounces 0: no compensation; else
+// VplParams::vpl_max_bounces, with compensation_rr_min_bounces = vpl_min_bounces. clamp_distance
+// and clamp_per_depth: VplStats'.
+SST_FUNC PathConfig many_light_direct_config(bool direct_elsewhere, bool diffuse_only, int compensation_max_bounces,
                                              int compensation_rr_min_bounces, float clamp_distance,
                                              float clamp_per_depth) {
-  PathConfig c = path_config(own_direct ? -1 : 0, 0, diffuse_only);
+  PathConfig c = path_config(direct_elsewhere ? -1 : 0, 0, diffuse_only);
   if (compensation_max_bounces > 0 && (clamp_distance > 0.0f || clamp_per_depth > 0.0f)) {
     c.max_bounces = compensation_max_bounces;
     c.rr_min_bounces = compensation_rr_min_bounces;
-    c.first_vertex_light = !own_direct;
+    c.first_vertex_light = !direct_elsewhere;
     c.clamp_distance = clamp_distance;
     c.clamp_per_depth = clamp_per_depth;
   }

@@ -65,9 +65,9 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
   frame.method_counters["view_distance"] = view_distance;
   sampler_->prepare(lighting, timer, frame.method_counters);
 
-  const bool own_direct = sampler_->estimates_direct();
+  const bool own_direct = sampler_->estimates_direct() && !restir_direct(ctx.options);
   const PathConfig direct_pass = many_light_direct_config(
-      own_direct, ctx.options.diffuse_only, vpl_params_.clamp_compensation ? vpl_params_.vpl_max_bounces : 0,
+      own_direct || restir_direct(ctx.options), ctx.options.diffuse_only, vpl_params_.clamp_compensation ? vpl_params_.vpl_max_bounces : 0,
       vpl_params_.vpl_min_bounces, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth);
   Accumulators acc;
   const int spp = ctx.options.spp;

@@ -7,18 +7,22 @@
 
 #include "core/pipeline/backend.h"
 #include "core/render/camera.h"
+#include "core/restir/restir_di.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/render_record.h"
 #include "core/util/error.h"
 
 #ifdef SST_HAVE_VULKAN
 #include "gpu/gpu_render_context.h"
+#include "gpu/restir_di_pass.h"
 #include "gpu/vulkan_method.h"
 #else
 namespace sst::gpu {
 // Never made without Vulkan; complete types let FrameRenderer's unique_ptrs to them be destroyed.
 class GpuRenderContext {};
 class VulkanMethod {};
+struct RestirDiPipelines {};
+struct GpuRestirHistory {};
 }  // namespace sst::gpu
 #endif
 
@@ -69,6 +73,9 @@ FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   check_coordinates(scene);  // before Embree sees a vertex it cannot bound
   accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel != "embree"); });
+  // ReSTIR DI's history names lights and points of the previous pose, and on Vulkan lives on the
+  // device that is made again below: temporal reuse restarts after a pose change, on both backends.
+  restir_history_.reset();
   lights_ = timer.time("light_setup", [&] {
     return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler),
                                           parse_emitter_tree_build(options_.light_tree),
@@ -79,6 +86,8 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
     // The method's Vulkan side renders with both the CPU structures above (VPL methods build some
     // trees and their cuts on the CPU) and the scene uploaded to the device.
     if (vulkan_method_) vulkan_method_->release_device();
+    restir_pipelines_.reset();
+    gpu_restir_history_.reset();
     gpu_.reset();
     gpu_ = timer.time("gpu_setup", [&] {
       return std::make_unique<gpu::GpuRenderContext>(options_.device, scene, *lights_, *accel_->flat_bvh(), gpu_accel_);
@@ -90,8 +99,9 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
 }
 
 RenderResult FrameRenderer::render(const Scene& scene, const Camera& camera, uint32_t seed, int width, int height,
-                                   int frame) {
-  return render_with(*method_, vulkan_method_.get(), options_.method, scene, camera, seed, width, height, frame);
+                                   int frame, bool direct_light) {
+  return render_with(*method_, vulkan_method_.get(), options_.method, scene, camera, seed, width, height, frame,
+                     direct_light);
 }
 
 RenderResult FrameRenderer::render_direct(const Scene& scene, const Camera& camera, uint32_t seed) {
@@ -101,12 +111,12 @@ RenderResult FrameRenderer::render_direct(const Scene& scene, const Camera& came
     if (options_.backend == "vulkan") vulkan_direct_ = gpu::make_vulkan_method(*direct_, "pt");
 #endif
   }
-  return render_with(*direct_, vulkan_direct_.get(), "pt", scene, camera, seed, 0, 0, 0);
+  return render_with(*direct_, vulkan_direct_.get(), "pt", scene, camera, seed, 0, 0, 0, true);
 }
 
 RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& name,
                                         const Scene& scene, const Camera& camera, uint32_t seed, int width,
-                                        int height, int frame) {
+                                        int height, int frame, bool direct_light) {
   if (!accel_) throw Error("FrameRenderer::render before prepare");
   check_coordinates(camera, scene.source);  // before any ray starts there
   RenderResult result;
@@ -124,15 +134,28 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
   PinholeCamera pinhole(camera, result.options.width, result.options.height);
   RenderContext context{scene,          *accel_,         *lights_, pinhole, result.options, result.options.width,
                         result.options.height, quiet_,   frame};
+  // Under ReSTIR DI the method's paths gathered no direct light at their first hits
+  // (restir_direct): the ReSTIR pass adds it, on the method's backend.
 #ifdef SST_HAVE_VULKAN
   if (vulkan_method) {
     result.frame = vulkan_method->render(context, *gpu_, result.timer);
+    if (direct_light && restir_direct(result.options)) {
+      if (!restir_pipelines_) {
+        restir_pipelines_ = result.timer.time("shader_compile", [&] { return gpu::make_restir_di_pipelines(*gpu_); });
+        gpu_restir_history_ = std::make_unique<gpu::GpuRestirHistory>();
+      }
+      gpu::add_restir_direct(context, *gpu_, *restir_pipelines_, result.timer, result.frame, *gpu_restir_history_);
+    }
     return result;
   }
 #else
   (void)vulkan_method;
 #endif
   result.frame = method.render(context, result.timer);
+  if (direct_light && restir_direct(result.options)) {
+    if (!restir_history_) restir_history_ = std::make_unique<RestirDiHistory>();
+    add_restir_direct(context, result.timer, result.frame, *restir_history_);
+  }
   return result;
 }
 

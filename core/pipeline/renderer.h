@@ -13,9 +13,12 @@
 #include "core/util/stage_timer.h"
 
 namespace sst {
+struct RestirDiHistory;
 namespace gpu {
 class GpuRenderContext;
 class VulkanMethod;
+struct RestirDiPipelines;
+struct GpuRestirHistory;
 }  // namespace gpu
 
 struct RenderResult {
@@ -44,9 +47,11 @@ class FrameRenderer {
   void prepare(const Scene& scene, StageTimer& timer);
   // One frame of the prepared scene seen by `camera` (as posed), at `width` x `height` (0: the
   // options'), with `seed`. The result's timer holds the method's stages.
-  // `frame`: the frame's index in its sequence (RenderContext::frame).
+  // `frame`: the frame's index in its sequence (RenderContext::frame). `direct_light` false: the
+  // caller uses the frame's indirect light only (a half-resolution GI frame), so ReSTIR DI's pass
+  // (--direct-sampler restir) is skipped and its history left to the frames that use it.
   RenderResult render(const Scene& scene, const Camera& camera, uint32_t seed, int width = 0, int height = 0,
-                      int frame = 0);
+                      int frame = 0, bool direct_light = true);
   // The same frame's direct light and first-hit AOVs only (the path tracer with no bounce: what
   // every method's direct pass computes), for a frame whose indirect light is rendered apart.
   RenderResult render_direct(const Scene& scene, const Camera& camera, uint32_t seed);
@@ -58,7 +63,8 @@ class FrameRenderer {
 
  private:
   RenderResult render_with(Method& method, gpu::VulkanMethod* vulkan_method, const std::string& method_name,
-                           const Scene& scene, const Camera& camera, uint32_t seed, int width, int height, int frame);
+                           const Scene& scene, const Camera& camera, uint32_t seed, int width, int height, int frame,
+                           bool direct_light);
 
   RenderOptions options_;
   bool quiet_;
@@ -69,6 +75,10 @@ class FrameRenderer {
   std::unique_ptr<gpu::GpuRenderContext> gpu_;
   std::string gpu_accel_ = "flat";  // GpuRenderContext's accel: flat, rayquery or auto
   std::unique_ptr<gpu::VulkanMethod> vulkan_method_, vulkan_direct_;
+  // --direct-sampler restir: the Vulkan pipelines, and each backend's history for temporal reuse.
+  std::unique_ptr<gpu::RestirDiPipelines> restir_pipelines_;
+  std::unique_ptr<gpu::GpuRestirHistory> gpu_restir_history_;
+  std::unique_ptr<RestirDiHistory> restir_history_;
   nlohmann::json device_;
   std::unique_ptr<class ThreadLimit> threads_;
 };

@@ -171,7 +171,7 @@ class SequenceRunner {
     const int lw = std::max(1, options_.width / s), lh = std::max(1, options_.height / s);
     RenderResult full = renderer_.render_direct(scene_, camera, seed);
     add_stages(timer, full.timer, "direct_");
-    RenderResult low = renderer_.render(scene_, camera, seed, lw, lh, frame);
+    RenderResult low = renderer_.render(scene_, camera, seed, lw, lh, frame, false);
     add_stages(timer, low.timer);
     glsl::ViewParams low_view = view_params(PinholeCamera(camera, lw, lh), lw, lh, 0);
     CentreGBuffer low_g = timer.time("gbuffer_low", [&] {

@@ -24,6 +24,7 @@
 #include "core/accel/bvh_layout.h"
 #include "core/accel/ray_offset.h"
 #include "core/material/brdf.h"
+#include "core/render/frame_layout.h"
 #include "core/rng/sobol_sampler.h"
 #include "core/sampling/sampling.h"
 #include "core/vpl/vpl_shading.h"
@@ -81,6 +82,22 @@ SST_FUNC PathConfig path_config(int max_bounces, int rr_min_bounces, bool diffus
   c.clamp_distance = 0.0f;
   c.clamp_per_depth = 0.0f;
   return c;
+}
+
+// c with vertex 1 gathering no light: the first hit's direct light is estimated elsewhere (ReSTIR
+// DI, core/restir/restir_di_stages.h), the emission the camera sees stays the path's. A path that
+// would end at vertex 1 (max_bounces 0) ends at its first hit, tracing no ray for light it would
+// not gather.
+SST_FUNC PathConfig path_direct_elsewhere(PathConfig c) {
+  if (c.max_bounces == 0) c.max_bounces = -1;
+  else c.first_vertex_light = false;
+  return c;
+}
+
+// `pt`'s path for RenderOptions' path flags (RENDER_*, core/render/frame_layout.h).
+SST_FUNC PathConfig path_config_for(int max_bounces, int rr_min_bounces, uint render_flags) {
+  PathConfig c = path_config(max_bounces, rr_min_bounces, (render_flags & RENDER_DIFFUSE_ONLY) != 0u);
+  return (render_flags & RENDER_RESTIR_DIRECT) != 0u ? path_direct_elsewhere(c) : c;
 }
 
 SST_FUNC bool path_compensates_clamp(SST_IN(PathConfig) cfg) {
@@ -172,6 +189,21 @@ SST_FUNC vec3 product_exact(vec3 a, vec3 b) {
   return r;
 }
 
+// The frame a vertex is shaded in, seen along `dir` (the ray that found it): the shading normal
+// ns's, or the facet's (ng) where the view lies under ns but above the facet (a coarse curved mesh
+// at a grazing angle; ending the path there lost the light such surfaces reflect, darkening what
+// they light: results/README.md, thin tubes against Cycles). `wo` is the view in that frame.
+// False exactly at grazing on the facet: no reflection is defined.
+SST_FUNC bool shading_frame(vec3 ns, vec3 ng, vec3 dir, SST_OUT(Basis) basis, SST_OUT(vec3) wo) {
+  basis = basis_from_normal(ns);
+  wo = to_local(basis, -normalize3(dir));
+  if (wo.z <= 0.0f) {
+    basis = basis_from_normal(ng);
+    wo = to_local(basis, -normalize3(dir));
+  }
+  return wo.z > 0.0f;
+}
+
 // What first_hit holds after a miss: Surface's defaults.
 SST_FUNC Surface surface_none() {
   Surface s;
@@ -247,16 +279,9 @@ SST_FUNC void path_first_hit(SCENE_CTX_PARAM SST_INOUT(PathState) st, BvhHit h, 
 SST_FUNC void path_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_INOUT(PathState) st, SST_IN(PathConfig) cfg) {
   st.flags = 0u;
   Brdf brdf = brdf_from_material(st.s.base_color, st.s.metallic, st.s.roughness, cfg.diffuse_only);
-  // A view under the interpolated normal but above the facet (a coarse curved mesh seen at a
-  // grazing angle) is shaded with the facet's normal: ending the path there lost the light such
-  // surfaces reflect, darkening what they light (results/README.md, thin tubes against Cycles).
-  Basis basis = basis_from_normal(st.s.ns);
-  vec3 wo = to_local(basis, -normalize3(st.dir));
-  if (wo.z <= 0.0f) {
-    basis = basis_from_normal(st.s.ng);
-    wo = to_local(basis, -normalize3(st.dir));
-  }
-  if (wo.z <= 0.0f) return;  // exactly grazing the facet: no reflection defined
+  Basis basis;
+  vec3 wo;
+  if (!shading_frame(st.s.ns, st.s.ng, st.dir, basis, wo)) return;
 
   // Every vertex draws its samples in the same order (light, BRDF, roulette), so sample set
   // numbers line up across paths and the sets stay stratified per vertex.

@@ -23,7 +23,7 @@ struct PathTraceParams {
   float ray_epsilon;
   int max_bounces;
   int rr_min_bounces;
-  uint diffuse_only;  // 1: RenderOptions::diffuse_only
+  uint path_flags;  // RENDER_* (render_flags of core/render/render_options.h)
 };
 
 // Push constants of pt_wavefront.comp: one wave of camera paths, sample view.sample_offset of
@@ -63,7 +63,7 @@ struct PathTraceTexel {
 
 #ifdef __cplusplus
 static_assert(sizeof(PathTraceParams) == 96);
-static_assert(offsetof(PathTraceParams, ray_epsilon) == 80 && offsetof(PathTraceParams, diffuse_only) == 92);
+static_assert(offsetof(PathTraceParams, ray_epsilon) == 80 && offsetof(PathTraceParams, path_flags) == 92);
 static_assert(sizeof(PathTraceTexel) == 80);
 static_assert(sizeof(PathWaveParams) == 112 && offsetof(PathWaveParams, first_pixel) == 96);
 // Bytes the host allocates per PathState (core/pt/path_stages.h) in the GPU's std430 layout, which

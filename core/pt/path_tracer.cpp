@@ -5,13 +5,17 @@
 
 namespace sst {
 
+PathConfig path_tracer_config(const PathTracerParams& params, const RenderOptions& options) {
+  return path_config_for(params.max_bounces, params.rr_min_bounces, render_flags(options));
+}
+
 PathSample trace_path(const RenderContext& ctx, const PathTracerParams& params, Ray ray, PixelSampler& sampler,
                       RayCounters& counters, Surface* first_hit) {
   PathCounters rays = path_counters();
   Surface s;
   bool hit = false;
   PathSample out = trace_path(ctx.scene, ctx.lights.packed(), ctx.accel, ray.origin, ray.direction,
-                              path_config(params.max_bounces, params.rr_min_bounces, ctx.options.diffuse_only),
+                              path_tracer_config(params, ctx.options),
                               sampler, rays, s, hit);
   counters.primary_rays += rays.primary_rays;
   counters.shadow_rays += rays.shadow_rays;
@@ -42,7 +46,7 @@ FrameOutput PathTracer::render(const RenderContext& ctx, StageTimer& timer) {
   FrameOutput frame;
   frame.allocate(ctx.width, ctx.height);
   const float inv_spp = 1.0f / float(ctx.options.spp);
-  const PathConfig cfg = path_config(params_.max_bounces, params_.rr_min_bounces, ctx.options.diffuse_only);
+  const PathConfig cfg = path_tracer_config(params_, ctx.options);
   timer.time("render", [&] {
     for_each_tile(ctx.width, ctx.height, ctx.quiet, "pt", frame.counters, [&](const Tile& tile, RayCounters& counters) {
       std::vector<PathSample> sums(size_t(tile.pixels()));

@@ -27,6 +27,10 @@ struct PathTracerParams {
   }
 };
 
+// The path PathTracer traces for these options: vertex 1 gathers no light under ReSTIR DI
+// (restir_direct), whose pass adds the first hit's direct light (path_direct_elsewhere).
+PathConfig path_tracer_config(const PathTracerParams& params, const RenderOptions& options);
+
 // `first_hit`, when given, receives the surface the camera ray hit (valid when the returned
 // depth is > 0): the many-light methods shade it with their own indirect estimate after taking
 // the direct light from here (max_bounces = 0), so direct light is computed one way for all.

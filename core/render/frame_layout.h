@@ -14,6 +14,11 @@ using uint = uint32_t;
 using glm::vec3;
 #endif
 
+// The path flags of the GPU passes that trace camera paths (PathTraceParams, ManyLightPush): what
+// of RenderOptions their paths read (render_flags, core/render/render_options.h).
+#define RENDER_DIFFUSE_ONLY 1u   // diffuse_only: every material Lambert
+#define RENDER_RESTIR_DIRECT 2u  // direct_sampler restir: the first hit's direct light comes from ReSTIR DI
+
 // What one dispatch renders: the camera, the image size, the seed and its range of sample indices.
 struct ViewParams {
   vec3 eye;
@@ -72,7 +77,7 @@ struct ManyLightTexel {
 struct ManyLightPush {
   ViewParams view;
   float scene_epsilon;  // SCENE_RAY_EPSILON of core/accel/ray_offset.h
-  uint diffuse_only;
+  uint path_flags;      // RENDER_*
   uint vpl_first;       // the VPLs of this dispatch's slice (0, ~0u: all)
   uint vpl_end;
   uint slice_flags;     // ML_SLICE_FIRST | ML_SLICE_LAST; both for an unsliced dispatch

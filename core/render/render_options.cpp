@@ -5,6 +5,7 @@
 
 #include "core/accel/embree_accel.h"
 #include "core/lights/light_sampler.h"
+#include "core/render/frame_layout.h"
 #include "core/util/machine_info.h"
 
 #include "core/util/error.h"
@@ -13,6 +14,10 @@ namespace sst {
 
 const char* backend_names() { return "cpu, vulkan, auto"; }
 const char* denoiser_names() { return "none, atrous, svgf"; }
+
+uint32_t render_flags(const RenderOptions& o) {
+  return (o.diffuse_only ? RENDER_DIFFUSE_ONLY : 0u) | (o.direct_sampler == "restir" ? RENDER_RESTIR_DIRECT : 0u);
+}
 
 uint64_t render_pixel_limit(uint64_t memory_bytes) {
   return std::min<uint64_t>(memory_bytes / 4 * 3 / kRenderBytesPerPixel, uint64_t(1) << 28);
@@ -35,6 +40,9 @@ void validate(const RenderOptions& o) {
   parse_light_sampler(o.light_sampler);  // throws for an unknown name
   parse_emitter_tree_build(o.light_tree);
   parse_emitter_distance(o.light_tree_distance);
+  if (o.direct_sampler != "nee" && o.direct_sampler != "restir")
+    throw Error("unknown direct_sampler '" + o.direct_sampler + "' (valid: " + direct_sampler_names() + ")");
+  validate(o.restir);
   if (o.accel != "embree" && o.accel != "flat" && o.accel != "rayquery")
     throw Error("unknown accel '" + o.accel + "' (valid: embree, flat, rayquery)");
   if (o.path_batch < 0 || o.path_batch > (1 << 20))

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/filter/filter_params.h"
+#include "core/render/direct_sampler.h"
 #include "core/temporal/temporal_reuse.h"
 
 namespace sst {
@@ -28,6 +29,8 @@ struct RenderOptions {
   std::string light_sampler = "power";  // core/lights/light_sampler.h: uniform, power, tree, slc
   std::string light_tree = "saoh";      // core/lights/emitter_tree_build.h: saoh, morton
   std::string light_tree_distance = "centre";  // core/lights/emitter_tree.h: centre, box, mixed
+  std::string direct_sampler = "nee";  // core/render/direct_sampler.h: nee, restir
+  RestirDiParams restir;
   std::string camera;  // name or index; "" = the first
   int threads = 0;     // 0 = all hardware threads
   float exposure = 0.0f;  // stops, applied when writing PNG only
@@ -75,6 +78,11 @@ struct RenderOptions {
       "the distance in the tree sampler's importance: centre (to a node's box centre, at least a quarter of its "
       "bounding radius, as pbrt-v4), box (to the box, at least its bounding radius) or mixed (box outside the "
       "bounding sphere, centre within)");
+    v("direct_sampler", direct_sampler,
+      "how every method samples the direct light at its first hits: nee (each path's next-event estimation, "
+      "MIS with BRDF sampling) or restir (ReSTIR DI: reservoirs of light samples resampled across neighbouring "
+      "pixels, docs/restir.md)");
+    restir.visit(v);
     v("camera", camera, "camera name or index (default: the first)");
     v("threads", threads, "CPU threads (0: all)");
     v("exposure", exposure, "exposure in stops for PNG output");
@@ -109,6 +117,13 @@ constexpr int kMaxThreads = 4096;
 
 // The valid values of RenderOptions::backend, for error messages: "cpu, vulkan, auto".
 const char* backend_names();
+// Whether ReSTIR DI estimates the direct light at the first hits, so that the methods' own paths
+// gather none there.
+inline bool restir_direct(const RenderOptions& options) { return options.direct_sampler == "restir"; }
+
+// The bits of the GPU passes' path flags (RENDER_* of core/render/frame_layout.h) these options set.
+uint32_t render_flags(const RenderOptions& options);
+
 // The valid values of RenderOptions::denoise: "none, atrous, svgf".
 const char* denoiser_names();
 

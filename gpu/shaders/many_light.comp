@@ -71,6 +71,7 @@ void main() {
   bool last_slice = (push.slice_flags & ML_SLICE_LAST) != 0u;
   ManyLightTexel acc = empty_texel();
   if (push.view.sample_offset != 0u || !first_slice) acc = texels[pixel];
+  bool diffuse_only = (push.path_flags & RENDER_DIFFUSE_ONLY) != 0u;
   for (uint k = 0u; k < push.view.spp; ++k) {
     PixelSampler ps = pixel_sampler(push.view.seed, pixel, push.view.sample_offset + k);
     vec3 dir = camera_sample_direction(push.view, xy.x, xy.y, ps);
@@ -78,13 +79,16 @@ void main() {
     Surface hit;
     bool has_hit;
     // rtslc with direct_light = cuts samples the direct light itself (rtslc_direct.h).
-    bool own_direct = kSpecOwnDirect != kSpecUnset ? kSpecOwnDirect != 0u : ml_params.rtslc_direct_cut_max_size != 0u;
-    PathConfig cfg = many_light_direct_config(own_direct, push.diffuse_only != 0u, push.compensation_max_bounces,
+    // ReSTIR DI (RENDER_RESTIR_DIRECT) takes its place, as every method's direct light.
+    bool restir = (push.path_flags & RENDER_RESTIR_DIRECT) != 0u;
+    bool own_direct =
+        !restir && (kSpecOwnDirect != kSpecUnset ? kSpecOwnDirect != 0u : ml_params.rtslc_direct_cut_max_size != 0u);
+    PathConfig cfg = many_light_direct_config(own_direct || restir, diffuse_only, push.compensation_max_bounces,
                                               push.compensation_rr_min_bounces, ml_params.clamp_distance,
                                               ml_params.clamp_per_depth);
     PathSample d = trace_path(push.view.eye, dir, cfg, ps, counters, hit, has_hit);
     if (own_direct && d.depth > 0.0)
-      d.direct += estimate_rtslc_direct(shading_point(hit, dir, d.depth, push.diffuse_only != 0u, int(xy.x), int(xy.y)),
+      d.direct += estimate_rtslc_direct(shading_point(hit, dir, d.depth, diffuse_only, int(xy.x), int(xy.y)),
                                         ps, counters);
     // Every slice retraces the camera ray (the same bits each time); the first one counts it.
     if (first_slice) {
@@ -95,7 +99,7 @@ void main() {
     }
     vec3 value = vec3(0.0);
     if (d.depth > 0.0) {
-      ShadingPoint sp = shading_point(hit, dir, d.depth, push.diffuse_only != 0u, int(xy.x), int(xy.y));
+      ShadingPoint sp = shading_point(hit, dir, d.depth, diffuse_only, int(xy.x), int(xy.y));
       IndirectEstimate e;
       if (first_slice && last_slice) {
         e = estimate_indirect(sp, ps);

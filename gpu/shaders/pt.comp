@@ -37,7 +37,7 @@ void main() {
   uint pixel = xy.y * pixel_view.width + xy.x;
   PathTraceTexel acc = path_texel_empty();
   if (pixel_view.sample_offset != 0u) acc = texels[pixel];
-  PathConfig cfg = path_config(params.max_bounces, params.rr_min_bounces, params.diffuse_only != 0u);
+  PathConfig cfg = path_config_for(params.max_bounces, params.rr_min_bounces, params.path_flags);
   for (uint i = 0u; i < pixel_view.spp; ++i) {
     PixelSampler ps = pixel_sampler(pixel_view.seed, pixel, pixel_view.sample_offset + i);
     vec3 dir = camera_sample_direction(pixel_view, xy.x, xy.y, ps);

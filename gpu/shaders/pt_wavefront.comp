@@ -39,7 +39,7 @@ void main() {
     atomicOr(status.overflow, 1u);
     return;
   }
-  PathConfig cfg = path_config(wave.pt.max_bounces, wave.pt.rr_min_bounces, wave.pt.diffuse_only != 0u);
+  PathConfig cfg = path_config_for(wave.pt.max_bounces, wave.pt.rr_min_bounces, wave.pt.path_flags);
   uint pixel = wave.first_pixel + slot;
 #if PT_WAVE_STAGE == 0
   // One local copy of the view keeps glslang's precise propagation small (as pt.comp).

@@ -100,7 +100,7 @@ Comparison compare_pt(const Scene& scene, const Case& c) {
   GpuLights lights(context, scene, light_sampler);
   PinholeCamera camera(select_camera(scene, ""), w, h);
   GpuPathTraceResult gpu = render_path_tracer(context, gpu_scene, bvh, lights, scene_ray_epsilon(scene), camera, w, h,
-                                              options.seed, options.spp, params, options.diffuse_only);
+                                              options.seed, options.spp, params, render_flags(options));
 
   const FrameOutput& g = gpu.frame;
   const FrameOutput& f = cpu.frame;

@@ -36,7 +36,8 @@ SST_FUNC vec3 estimate_rtslc_direct(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARA
     uint entry = emitter_tree_descend(LIGHT_CTX ML_CUT_NODE(first + i), sp.p, sp.basis.n, u.x, prob);
     if (entry == LIGHT_NONE || !(prob > 0.0f)) continue;
     LightSample ls;
-    if (!light_sample_entry(SCENE_CTX LIGHT_CTX sp.p, entry, prob, u, ls)) continue;
+    vec2 b;
+    if (!light_sample_entry(SCENE_CTX LIGHT_CTX sp.p, entry, prob, u, ls, b)) continue;
     vec3 c = shade_light_sample(RAY_CTX sp.p, sp.ng, sp.lift, sp.offset, sp.brdf, sp.basis, sp.wo, ls, false, counters);
     SST_PRECISE vec3 v = c * float(slots);
     sum += v;

@@ -1,0 +1,104 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// rayquery build (gpu/CMakeLists.txt)
+// variants: RESTIR_STAGE 0 1 2 3
+// ReSTIR DI on the GPU: the stages of core/restir/restir_di_stages.h, one dispatch each over the
+// image, the twin of add_restir_direct's loops (core/restir/restir_di.cpp). Compiled once per
+// stage (restir_di_<RESTIR_STAGE>): 0 the camera ray, its first hit and the initial reservoir;
+// 1 the temporal pass; 2 a spatial pass; 3 the round's estimate added to the pixel's sums.
+// gpu/restir_di_pass.cpp runs a frame: for each round 0, 1 where there is history, 2 per spatial
+// pass (the reservoir buffers swapping after each), then 3.
+// Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
+// (LIGHT_BUFFERS), 13 RestirSurface per pixel, 14 the reservoirs read, 15 the reservoirs written,
+// 16 RestirTexel per pixel, 17 and 18 the previous round's surfaces and reservoirs, 19 its view.
+// Push constants: RestirDiPush.
+#include "core/scene/scene_layout.h"
+#include "core/accel/bvh_layout.h"
+#include "core/lights/light_layout.h"
+#include "core/restir/restir_di_layout.h"
+SCENE_BUFFERS(0)
+#include "gpu/shaders/scene_accel.glsl"
+LIGHT_BUFFERS(7)
+layout(std430, binding = 13) buffer Surfaces { RestirSurface surfaces[]; };
+layout(std430, binding = 14) readonly buffer ReservoirsIn { RestirReservoir reservoirs_in[]; };
+layout(std430, binding = 15) writeonly buffer ReservoirsOut { RestirReservoir reservoirs_out[]; };
+layout(std430, binding = 16) buffer Texels { RestirTexel texels[]; };
+layout(std430, binding = 17) readonly buffer HistorySurfaces { RestirSurface history_surfaces[]; };
+layout(std430, binding = 18) readonly buffer HistoryReservoirs { RestirReservoir history_reservoirs[]; };
+layout(std430, binding = 19) readonly buffer HistoryView { ViewParams history_view; };
+layout(push_constant) uniform Push { RestirDiPush push; };
+#define SCENE_RAY_EPSILON push.ray_epsilon
+// The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
+#include "gpu/shaders/surface.glsl"
+#include "core/accel/bvh_traverse.h"
+#include "gpu/shaders/light_sampler.glsl"
+#include "gpu/shaders/ray_queries.glsl"
+#define RESTIR_CTX_PARAM
+#define RESTIR_CTX
+#define RESTIR_SURFACE(i) surfaces[i]
+#define RESTIR_RESERVOIR(i) reservoirs_in[i]
+#define RESTIR_HISTORY_SURFACE(i) history_surfaces[i]
+#define RESTIR_HISTORY_RESERVOIR(i) history_reservoirs[i]
+#include "core/restir/restir_di_stages.h"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+void add_counters(inout RestirTexel t, PathCounters c) {
+  t.primary_rays += c.primary_rays;
+  t.shadow_rays += c.shadow_rays;
+  t.bounce_rays += c.bounce_rays;
+}
+
+void main() {
+  uvec2 xy = gl_GlobalInvocationID.xy;
+  ViewParams view = push.view;
+  if (xy.x >= view.width || xy.y >= view.height) return;
+  uint pixel = xy.y * view.width + xy.x;
+  uint round = view.sample_offset;
+  bool diffuse_only = (push.flags & RESTIR_DIFFUSE_ONLY) != 0u;
+  PathCounters c = path_counters();
+#if RESTIR_STAGE == 0
+  RestirTexel t;
+  if (round == 0u) {
+    t.direct = vec3(0.0);
+    t.primary_rays = 0u;
+    t.shadow_rays = 0u;
+    t.bounce_rays = 0u;
+    t.nonfinite = 0u;
+    t.pad0 = 0u;
+  } else {
+    t = texels[pixel];
+  }
+  RestirSurface s = restir_camera(view, xy.x, xy.y, round, c);
+  surfaces[pixel] = s;
+  HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamInitial);
+  reservoirs_out[pixel] = restir_initial(s, diffuse_only, push.light_candidates, push.brdf_candidates, rng, c);
+  add_counters(t, c);
+  texels[pixel] = t;
+#elif RESTIR_STAGE == 1
+  HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamTemporal);
+  reservoirs_out[pixel] = restir_temporal(xy.x, xy.y, history_view, diffuse_only, push.temporal_cap,
+                                          (push.flags & RESTIR_UNBIASED) != 0u, rng, c);
+  RestirTexel t = texels[pixel];
+  add_counters(t, c);
+  texels[pixel] = t;
+#elif RESTIR_STAGE == 2
+  HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamSpatial + push.pass);
+  reservoirs_out[pixel] = restir_spatial(xy.x, xy.y, view.width, view.height, diffuse_only, push.neighbours,
+                                         push.radius, (push.flags & RESTIR_UNBIASED) != 0u, rng, c);
+  RestirTexel t = texels[pixel];
+  add_counters(t, c);
+  texels[pixel] = t;
+#else
+  vec3 d = restir_shade(surfaces[pixel], diffuse_only, reservoirs_in[pixel]);
+  RestirTexel t = texels[pixel];
+  // A NaN or Inf estimate is a bug to find, not a pixel to show: drop and count it.
+  if (!is_finite3(d)) {
+    t.nonfinite += 1u;
+  } else {
+    precise vec3 sum = t.direct + d;
+    t.direct = sum;
+  }
+  texels[pixel] = t;
+#endif
+}

@@ -13,8 +13,8 @@ void validate(const RestirDiParams& p) {
     throw Error("restir_candidates must be in 1..1024 (got " + std::to_string(p.candidates) + ")");
   if (p.brdf_candidates < 0 || p.brdf_candidates > 1)
     throw Error("restir_brdf_candidates must be 0 or 1 (got " + std::to_string(p.brdf_candidates) + ")");
-  if (!(p.temporal_cap >= 1.0f && p.temporal_cap <= 1000.0f))
-    throw Error("restir_temporal_cap must be in 1..1000 (got " + std::to_string(p.temporal_cap) + ")");
+  if (!(p.temporal_cap > 0.0f && p.temporal_cap <= 1000.0f))
+    throw Error("restir_temporal_cap must be in (0, 1000] (got " + std::to_string(p.temporal_cap) + ")");
   if (p.spatial_passes < 0 || p.spatial_passes > 8)
     throw Error("restir_spatial_passes must be in 0..8 (got " + std::to_string(p.spatial_passes) + ")");
   if (p.neighbours < 1 || p.neighbours > 16)

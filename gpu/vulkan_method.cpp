@@ -5,6 +5,7 @@
 #include "core/pt/path_tracer.h"
 #include "core/util/error.h"
 #include "gpu/gi10_vulkan.h"
+#include "gpu/restir_gi_vulkan.h"
 #include "gpu/many_light_method_vulkan.h"
 #include "gpu/path_tracer_vulkan.h"
 
@@ -15,6 +16,7 @@ std::unique_ptr<VulkanMethod> make_vulkan_method(Method& method, const std::stri
   if (auto* many_light = dynamic_cast<ManyLightMethod*>(&method))
     return std::make_unique<VulkanManyLightMethod>(*many_light);
   if (auto* gi10 = dynamic_cast<Gi10Method*>(&method)) return std::make_unique<VulkanGi10>(*gi10);
+  if (auto* gi = dynamic_cast<RestirGi*>(&method)) return std::make_unique<VulkanRestirGi>(*gi);
   throw Error("method '" + name + "' has no Vulkan port yet; use --backend cpu");
 }
 

@@ -4,6 +4,7 @@
 #include "core/manylight/many_light_method.h"
 #include "core/manylight/many_light_methods.h"
 #include "core/pt/pt_method.h"
+#include "core/restir/restir_gi.h"
 
 namespace sst {
 namespace {
@@ -20,6 +21,7 @@ std::vector<MethodInfo> all_methods() {
   SST_MANY_LIGHT_METHODS(ADD_MANY_LIGHT_METHOD)
 #undef ADD_MANY_LIGHT_METHOD
   add(gi10_method_info(), "gi10");
+  add(restir_gi_method_info(), "restir_gi");
   return methods;
 }
 

@@ -14,14 +14,14 @@
 
 #ifdef SST_HAVE_VULKAN
 #include "gpu/gpu_render_context.h"
-#include "gpu/restir_di_pass.h"
+#include "gpu/restir_pass.h"
 #include "gpu/vulkan_method.h"
 #else
 namespace sst::gpu {
 // Never made without Vulkan; complete types let FrameRenderer's unique_ptrs to them be destroyed.
 class GpuRenderContext {};
 class VulkanMethod {};
-struct RestirDiPipelines {};
+struct RestirPipelines {};
 struct GpuRestirHistory {};
 }  // namespace sst::gpu
 #endif
@@ -76,6 +76,7 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   // ReSTIR DI's history names lights and points of the previous pose, and on Vulkan lives on the
   // device that is made again below: temporal reuse restarts after a pose change, on both backends.
   restir_history_.reset();
+  method_->scene_posed();
   lights_ = timer.time("light_setup", [&] {
     return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler),
                                           parse_emitter_tree_build(options_.light_tree),
@@ -141,7 +142,7 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
     result.frame = vulkan_method->render(context, *gpu_, result.timer);
     if (direct_light && restir_direct(result.options)) {
       if (!restir_pipelines_) {
-        restir_pipelines_ = result.timer.time("shader_compile", [&] { return gpu::make_restir_di_pipelines(*gpu_); });
+        restir_pipelines_ = result.timer.time("shader_compile", [&] { return gpu::make_restir_pipelines(*gpu_); });
         gpu_restir_history_ = std::make_unique<gpu::GpuRestirHistory>();
       }
       gpu::add_restir_direct(context, *gpu_, *restir_pipelines_, result.timer, result.frame, *gpu_restir_history_);
@@ -153,7 +154,7 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
 #endif
   result.frame = method.render(context, result.timer);
   if (direct_light && restir_direct(result.options)) {
-    if (!restir_history_) restir_history_ = std::make_unique<RestirDiHistory>();
+    if (!restir_history_) restir_history_ = std::make_unique<RestirHistory>();
     add_restir_direct(context, result.timer, result.frame, *restir_history_);
   }
   return result;

@@ -13,11 +13,11 @@
 #include "core/util/stage_timer.h"
 
 namespace sst {
-struct RestirDiHistory;
+struct RestirHistory;
 namespace gpu {
 class GpuRenderContext;
 class VulkanMethod;
-struct RestirDiPipelines;
+struct RestirPipelines;
 struct GpuRestirHistory;
 }  // namespace gpu
 
@@ -76,9 +76,9 @@ class FrameRenderer {
   std::string gpu_accel_ = "flat";  // GpuRenderContext's accel: flat, rayquery or auto
   std::unique_ptr<gpu::VulkanMethod> vulkan_method_, vulkan_direct_;
   // --direct-sampler restir: the Vulkan pipelines, and each backend's history for temporal reuse.
-  std::unique_ptr<gpu::RestirDiPipelines> restir_pipelines_;
+  std::unique_ptr<gpu::RestirPipelines> restir_pipelines_;
   std::unique_ptr<gpu::GpuRestirHistory> gpu_restir_history_;
-  std::unique_ptr<RestirDiHistory> restir_history_;
+  std::unique_ptr<RestirHistory> restir_history_;
   nlohmann::json device_;
   std::unique_ptr<class ThreadLimit> threads_;
 };

@@ -43,6 +43,10 @@ class Method {
   virtual FrameOutput render(const RenderContext& context, StageTimer& timer) = 0;
   // Every parameter in effect, for the JSON record.
   virtual nlohmann::json params() const = 0;
+  // The scene was posed again (geometry or lights moved, FrameRenderer::prepare): state a method
+  // keeps from frame to frame about the old pose is dropped here, as its Vulkan side's is with the
+  // device (VulkanMethod::release_device), so that both backends go on alike.
+  virtual void scene_posed() {}
 };
 
 // A method as the registry lists it: name -> description, parameter table, factory. Each method

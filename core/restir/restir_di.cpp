@@ -1,149 +1,30 @@
 #include "core/restir/restir_di.h"
 
-#include <utility>
-#include <vector>
-
 #include "core/accel/embree_accel.h"
-#include "core/lights/light_sampler.h"
-#include "core/render/camera.h"
-#include "core/render/pixel_loop.h"
-#include "core/scene/scene_access.h"
 
 namespace sst {
-// What restir_spatial reads of the other pixels: the round's first hits and the previous stage's
-// reservoirs.
-struct RestirFrame {
-  const std::vector<RestirSurface>& surfaces;
-  const std::vector<RestirReservoir>& reservoirs;
-  const RestirDiHistory& history;
-};
-}  // namespace sst
 
-#define RESTIR_CTX_PARAM const ::sst::RestirFrame &restir,
-#define RESTIR_CTX restir,
-#define RESTIR_SURFACE(i) restir.surfaces[i]
-#define RESTIR_RESERVOIR(i) restir.reservoirs[i]
-#define RESTIR_HISTORY_SURFACE(i) restir.history.surfaces[i]
-#define RESTIR_HISTORY_RESERVOIR(i) restir.history.reservoirs[i]
-#include "core/restir/restir_di_stages.h"
-
-namespace sst {
-namespace {
-
-void add_to_texel(const PathCounters& c, RestirTexel& t) {
-  t.primary_rays += c.primary_rays;
-  t.shadow_rays += c.shadow_rays;
-  t.bounce_rays += c.bounce_rays;
+RestirReuse restir_reuse(const RestirDiParams& p) {
+  RestirReuse r;
+  r.temporal = p.temporal;
+  r.temporal_cap = p.temporal_cap;
+  r.spatial_passes = p.spatial_passes;
+  r.neighbours = p.neighbours;
+  r.radius = p.radius;
+  r.unbiased = p.combine == "unbiased";
+  return r;
 }
 
-}  // namespace
-
-bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirDiPush& push) {
-  return valid && view.width == push.view.width && view.height == push.view.height;
-}
-
-RestirDiPush restir_push(const RenderContext& ctx, float ray_epsilon, uint32_t round, uint32_t pass, bool temporal) {
-  const RestirDiParams& p = ctx.options.restir;
-  RestirDiPush push{};
-  push.view = view_params(ctx.camera, ctx.width, ctx.height, ctx.options.seed);
-  push.view.sample_offset = round;
-  push.view.spp = 1u;
-  push.ray_epsilon = ray_epsilon;
-  push.flags = (ctx.options.diffuse_only ? RESTIR_DIFFUSE_ONLY : 0u) | (p.combine == "unbiased" ? RESTIR_UNBIASED : 0u) |
-               (temporal ? RESTIR_TEMPORAL : 0u);
-  push.light_candidates = uint32_t(p.candidates);
-  push.brdf_candidates = uint32_t(p.brdf_candidates);
-  push.neighbours = uint32_t(p.neighbours);
-  push.radius = p.radius;
-  push.pass = pass;
-  push.temporal_cap = p.temporal_cap;
+RestirPush restir_di_push(const RenderContext& ctx, float ray_epsilon) {
+  RestirPush push = restir_push(ctx, ray_epsilon, restir_reuse(ctx.options.restir));
+  push.light_candidates = uint32_t(ctx.options.restir.candidates);
+  push.brdf_candidates = uint32_t(ctx.options.restir.brdf_candidates);
   return push;
 }
 
-void add_restir_sums(std::span<const RestirTexel> sums, int spp, FrameOutput& frame) {
-  const float inv_spp = 1.0f / float(spp);
-  const int width = frame.direct.width;
-  for (size_t i = 0; i < sums.size(); ++i) {
-    const RestirTexel& t = sums[i];
-    const int x = int(i % size_t(width)), y = int(i / size_t(width));
-    const vec3 d = t.direct * inv_spp;
-    frame.direct.set_rgb(x, y, frame.direct.rgb(x, y) + d);
-    frame.color.set_rgb(x, y, frame.color.rgb(x, y) + d);
-    frame.counters.primary_rays += t.primary_rays;
-    frame.counters.shadow_rays += t.shadow_rays;
-    frame.counters.bounce_rays += t.bounce_rays;
-    frame.counters.nonfinite_samples += t.nonfinite;
-  }
-}
-
-void add_restir_direct(const RenderContext& ctx, StageTimer& timer, FrameOutput& frame, RestirDiHistory& history) {
-  const size_t pixels = size_t(ctx.width) * size_t(ctx.height);
-  const Scene& scene = ctx.scene;
-  const PackedLights& lights = ctx.lights.packed();
-  const EmbreeAccel& accel = ctx.accel;
-  std::vector<RestirSurface> surfaces(pixels);
-  std::vector<RestirReservoir> reservoirs(pixels), next(pixels);
-  std::vector<RestirTexel> sums(pixels, RestirTexel{});
-  RayCounters unused;  // the rays are counted per pixel, in the sums
-  // One stage over every pixel: fn(pixel index, x, y, counters).
-  auto stage = [&](auto&& fn) {
-    for_each_pixel(ctx.width, ctx.height, true, "restir_di", unused, [&](int x, int y, RayCounters&) {
-      const size_t i = size_t(y) * size_t(ctx.width) + size_t(x);
-      PathCounters c = path_counters();
-      fn(i, uint(x), uint(y), c);
-      add_to_texel(c, sums[i]);
-    });
-  };
-  timer.time("restir_di", [&] {
-    for (int round = 0; round < ctx.options.spp; ++round) {
-      const RestirDiPush first = restir_push(ctx, accel.scene_epsilon(), uint32_t(round), 0u, false);
-      // A frame's rounds are independent estimates (chained, they were correlated and their mean
-      // measured worse); its first round continues the previous frame's last.
-      const bool temporal =
-          round == 0 && ctx.options.restir.temporal && restir_history_usable(history.valid, history.view, first);
-      const RestirDiPush push = restir_push(ctx, accel.scene_epsilon(), uint32_t(round), 0u, temporal);
-      const bool diffuse_only = (push.flags & RESTIR_DIFFUSE_ONLY) != 0u;
-      const bool unbiased = (push.flags & RESTIR_UNBIASED) != 0u;
-      stage([&](size_t i, uint x, uint y, PathCounters& c) {
-        surfaces[i] = restir_camera(scene, accel, push.view, x, y, uint(round), c);
-        HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamInitial);
-        reservoirs[i] = restir_initial(scene, lights, accel, surfaces[i], diffuse_only, push.light_candidates,
-                                       push.brdf_candidates, rng, c);
-      });
-      if (temporal) {
-        const RestirFrame in{surfaces, reservoirs, history};
-        stage([&](size_t i, uint x, uint y, PathCounters& c) {
-          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamTemporal);
-          next[i] = restir_temporal(scene, lights, accel, in, x, y, history.view, diffuse_only, push.temporal_cap,
-                                    unbiased, rng, c);
-        });
-        std::swap(reservoirs, next);
-      }
-      for (int pass = 0; pass < ctx.options.restir.spatial_passes; ++pass) {
-        const RestirFrame in{surfaces, reservoirs, history};
-        stage([&](size_t i, uint x, uint y, PathCounters& c) {
-          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamSpatial + uint(pass));
-          next[i] = restir_spatial(scene, lights, accel, in, x, y, uint(ctx.width), uint(ctx.height), diffuse_only,
-                                   push.neighbours, push.radius, unbiased, rng, c);
-        });
-        std::swap(reservoirs, next);
-      }
-      stage([&](size_t i, uint, uint, PathCounters&) {
-        vec3 d = restir_shade(scene, lights, surfaces[i], diffuse_only, reservoirs[i]);
-        // A NaN or Inf estimate is a bug to find, not a pixel to show: drop and count it.
-        if (!is_finite(d)) ++sums[i].nonfinite;
-        else sums[i].direct = sums[i].direct + d;
-      });
-      // This round is the next one's history (the buffers swap, the next round overwrites).
-      std::swap(history.surfaces, surfaces);
-      std::swap(history.reservoirs, reservoirs);
-      surfaces.resize(pixels);
-      reservoirs.resize(pixels);
-      history.view = push.view;
-      history.valid = true;
-    }
-  });
-  add_restir_sums(sums, ctx.options.spp, frame);
+void add_restir_direct(const RenderContext& ctx, StageTimer& timer, FrameOutput& frame, RestirHistory& history) {
+  run_restir(ctx, RestirKind::direct, restir_di_push(ctx, ctx.accel.scene_epsilon()), restir_reuse(ctx.options.restir),
+             history, "restir_di", timer, frame);
 }
 
 }  // namespace sst

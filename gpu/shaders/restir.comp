@@ -1,21 +1,22 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // rayquery build (gpu/CMakeLists.txt)
-// variants: RESTIR_STAGE 0 1 2 3
-// ReSTIR DI on the GPU: the stages of core/restir/restir_di_stages.h, one dispatch each over the
-// image, the twin of add_restir_direct's loops (core/restir/restir_di.cpp). Compiled once per
-// stage (restir_di_<RESTIR_STAGE>): 0 the camera ray, its first hit and the initial reservoir;
-// 1 the temporal pass; 2 a spatial pass; 3 the round's estimate added to the pixel's sums.
-// gpu/restir_di_pass.cpp runs a frame: for each round 0, 1 where there is history, 2 per spatial
-// pass (the reservoir buffers swapping after each), then 3.
+// variants: RESTIR_STAGE 0 1 2 3 4
+// ReSTIR DI and ReSTIR GI on the GPU: the passes of core/restir/restir_stages.h and the initial
+// passes of restir_di_stages.h and restir_gi_stages.h, one dispatch each over the image, the twin
+// of run_restir's loops (core/restir/restir.cpp). Compiled once per stage (restir_<RESTIR_STAGE>):
+// 0 the camera ray, its first hit and ReSTIR DI's initial reservoir; 1 the temporal pass; 2 a
+// spatial pass; 3 the round's estimate added to the pixel's sums; 4 as 0, ReSTIR GI's.
+// gpu/restir_pass.cpp runs a frame: for each round 0 or 4, 1 where there is history, 2 per
+// spatial pass (the reservoir buffers swapping after each), then 3.
 // Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
 // (LIGHT_BUFFERS), 13 RestirSurface per pixel, 14 the reservoirs read, 15 the reservoirs written,
 // 16 RestirTexel per pixel, 17 and 18 the previous round's surfaces and reservoirs, 19 its view.
-// Push constants: RestirDiPush.
+// Push constants: RestirPush.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
-#include "core/restir/restir_di_layout.h"
+#include "core/restir/restir_layout.h"
 SCENE_BUFFERS(0)
 #include "gpu/shaders/scene_accel.glsl"
 LIGHT_BUFFERS(7)
@@ -26,13 +27,12 @@ layout(std430, binding = 16) buffer Texels { RestirTexel texels[]; };
 layout(std430, binding = 17) readonly buffer HistorySurfaces { RestirSurface history_surfaces[]; };
 layout(std430, binding = 18) readonly buffer HistoryReservoirs { RestirReservoir history_reservoirs[]; };
 layout(std430, binding = 19) readonly buffer HistoryView { ViewParams history_view; };
-layout(push_constant) uniform Push { RestirDiPush push; };
+layout(push_constant) uniform Push { RestirPush push; };
 #define SCENE_RAY_EPSILON push.ray_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
 #include "gpu/shaders/surface.glsl"
 #include "core/accel/bvh_traverse.h"
-#include "gpu/shaders/light_sampler.glsl"
-#include "gpu/shaders/ray_queries.glsl"
+#include "gpu/shaders/path_trace.glsl"
 #define RESTIR_CTX_PARAM
 #define RESTIR_CTX
 #define RESTIR_SURFACE(i) surfaces[i]
@@ -40,6 +40,7 @@ layout(push_constant) uniform Push { RestirDiPush push; };
 #define RESTIR_HISTORY_SURFACE(i) history_surfaces[i]
 #define RESTIR_HISTORY_RESERVOIR(i) history_reservoirs[i]
 #include "core/restir/restir_di_stages.h"
+#include "core/restir/restir_gi_stages.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -57,7 +58,7 @@ void main() {
   uint round = view.sample_offset;
   bool diffuse_only = (push.flags & RESTIR_DIFFUSE_ONLY) != 0u;
   PathCounters c = path_counters();
-#if RESTIR_STAGE == 0
+#if RESTIR_STAGE == 0 || RESTIR_STAGE == 4
   RestirTexel t;
   if (round == 0u) {
     t.direct = vec3(0.0);
@@ -71,8 +72,13 @@ void main() {
   }
   RestirSurface s = restir_camera(view, xy.x, xy.y, round, c);
   surfaces[pixel] = s;
+#if RESTIR_STAGE == 0
   HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamInitial);
-  reservoirs_out[pixel] = restir_initial(s, diffuse_only, push.light_candidates, push.brdf_candidates, rng, c);
+  reservoirs_out[pixel] = restir_di_initial(s, diffuse_only, push.light_candidates, push.brdf_candidates, rng, c);
+#else
+  PixelSampler ps = pixel_sampler(view.seed ^ kRestirGiSeed, pixel, round);
+  reservoirs_out[pixel] = restir_gi_initial(s, diffuse_only, push.max_bounces, push.rr_min_bounces, ps, c);
+#endif
   add_counters(t, c);
   texels[pixel] = t;
 #elif RESTIR_STAGE == 1

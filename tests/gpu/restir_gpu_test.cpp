@@ -1,4 +1,4 @@
-// ReSTIR DI on the Vulkan backend (gpu/restir_di_pass.h) against the CPU's (core/restir/
+// ReSTIR DI and ReSTIR GI on the Vulkan backend (gpu/restir_pass.h) against the CPU's (core/restir/
 // restir_di.cpp) on the same flat BVH: one source, the same stages in the same order, so lavapipe
 // gives the CPU's bits (the bar, relative RMSE below 1e-3, leaves room for GPUs whose sqrt and
 // division are not correctly rounded). Every kind of method takes its direct light from it:
@@ -62,7 +62,7 @@ void expect_backends_agree(const Scene& scene, bool diffuse_only, const Case& c)
 }
 
 TEST(RestirDiVulkan, MatchesTheCpuAmongManyLights) {
-  SKIP_WITHOUT_GPU("restir_di_1");
+  SKIP_WITHOUT_GPU("restir_1");
   Scene scene = test::many_lights(31, 400, 5, 5, true);
   for (const Case& c : {Case{"pt", {{"max_bounces", 1}}, "power", "unbiased", 2},
                         Case{"pt", {{"max_bounces", 0}}, "power", "biased", 1},
@@ -71,7 +71,7 @@ TEST(RestirDiVulkan, MatchesTheCpuAmongManyLights) {
 }
 
 TEST(RestirDiVulkan, MatchesTheCpuOnTheGlossyCornellBox) {
-  SKIP_WITHOUT_GPU("restir_di_1");
+  SKIP_WITHOUT_GPU("restir_1");
   Scene scene = load_default_scene();
   for (const Case& c : {Case{"pt", {{"max_bounces", 2}}, "power", "unbiased", 1},
                         Case{"sst", {{"vpls", 512}}, "power", "unbiased", 1}})
@@ -81,7 +81,7 @@ TEST(RestirDiVulkan, MatchesTheCpuOnTheGlossyCornellBox) {
 // Temporal reuse through a turning camera: every frame of a sequence reprojects the last one's
 // reservoirs the same way on both backends.
 TEST(RestirDiVulkan, SequencesWithTemporalReuseMatchTheCpu) {
-  SKIP_WITHOUT_GPU("restir_di_1");
+  SKIP_WITHOUT_GPU("restir_1");
   Scene scene = test::many_lights(31, 400, 5, 5, true);
   std::vector<KeyFramePath> paths = parse_key_frame_paths(
       nlohmann::json::parse(R"([{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 20}]}])"), scene, "test");
@@ -110,6 +110,39 @@ TEST(RestirDiVulkan, SequencesWithTemporalReuseMatchTheCpu) {
     double direct = test::relative_rmse(gpu[f], cpu[f]);
     std::printf("frame %zu: relative RMSE of the direct light, vulkan vs cpu: %.2e\n", f, direct);
     EXPECT_LT(direct, 1e-3) << "frame " << f;
+  }
+}
+
+// restir_gi's secondary paths and reuse, single frames and a sequence through a turning camera.
+TEST(RestirGiVulkan, MatchesTheCpu) {
+  SKIP_WITHOUT_GPU("restir_4");
+  Scene scene = load_default_scene();
+  std::vector<KeyFramePath> paths = parse_key_frame_paths(
+      nlohmann::json::parse(R"([{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 20}]}])"), scene, "test");
+  for (bool diffuse_only : {true, false}) {
+    auto frames = [&](const std::string& backend) {
+      RenderOptions o;
+      o.method = "restir_gi";
+      o.width = 40;
+      o.height = 32;
+      o.spp = 2;
+      o.frames = 3;
+      o.backend = backend;
+      o.accel = "flat";
+      o.diffuse_only = diffuse_only;
+      std::vector<Image> out;
+      Scene posed = scene;
+      render_sequence(posed, paths, o, {{"max_bounces", 2}}, true,
+                      [&](SequenceFrame& f) { out.push_back(f.result.frame.color); });
+      return out;
+    };
+    std::vector<Image> cpu = frames("cpu"), gpu = frames("vulkan");
+    ASSERT_EQ(cpu.size(), gpu.size());
+    for (size_t f = 0; f < cpu.size(); ++f) {
+      double color = test::relative_rmse(gpu[f], cpu[f]);
+      std::printf("restir_gi%s frame %zu: relative RMSE vulkan vs cpu %.2e\n", diffuse_only ? " diffuse" : "", f, color);
+      EXPECT_LT(color, 1e-3) << "frame " << f;
+    }
   }
 }
 

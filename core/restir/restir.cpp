@@ -1,0 +1,159 @@
+#include "core/restir/restir.h"
+
+#include <utility>
+#include <vector>
+
+#include "core/accel/embree_accel.h"
+#include "core/lights/light_sampler.h"
+#include "core/render/camera.h"
+#include "core/render/pixel_loop.h"
+#include "core/scene/scene_access.h"
+
+namespace sst {
+// What the reuse passes read of the other pixels: the round's first hits, the previous stage's
+// reservoirs, and the previous frame's last round.
+struct RestirFrame {
+  const std::vector<RestirSurface>& surfaces;
+  const std::vector<RestirReservoir>& reservoirs;
+  const RestirHistory& history;
+};
+}  // namespace sst
+
+#define RESTIR_CTX_PARAM const ::sst::RestirFrame &restir,
+#define RESTIR_CTX restir,
+#define RESTIR_SURFACE(i) restir.surfaces[i]
+#define RESTIR_RESERVOIR(i) restir.reservoirs[i]
+#define RESTIR_HISTORY_SURFACE(i) restir.history.surfaces[i]
+#define RESTIR_HISTORY_RESERVOIR(i) restir.history.reservoirs[i]
+#include "core/restir/restir_di_stages.h"
+#include "core/restir/restir_gi_stages.h"
+
+namespace sst {
+namespace {
+
+void add_to_texel(const PathCounters& c, RestirTexel& t) {
+  t.primary_rays += c.primary_rays;
+  t.shadow_rays += c.shadow_rays;
+  t.bounce_rays += c.bounce_rays;
+}
+
+}  // namespace
+
+RestirPush restir_push(const RenderContext& ctx, float ray_epsilon, const RestirReuse& reuse) {
+  RestirPush push{};
+  push.view = view_params(ctx.camera, ctx.width, ctx.height, ctx.options.seed);
+  push.view.spp = 1u;
+  push.ray_epsilon = ray_epsilon;
+  push.flags = (ctx.options.diffuse_only ? RESTIR_DIFFUSE_ONLY : 0u) | (reuse.unbiased ? RESTIR_UNBIASED : 0u);
+  push.neighbours = uint32_t(reuse.neighbours);
+  push.radius = reuse.radius;
+  push.temporal_cap = reuse.temporal_cap;
+  return push;
+}
+
+RestirPush restir_round_push(const RestirPush& base, uint32_t round, uint32_t pass, bool temporal) {
+  RestirPush push = base;
+  push.view.sample_offset = round;
+  push.pass = pass;
+  if (temporal) push.flags |= RESTIR_TEMPORAL;
+  return push;
+}
+
+bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirPush& push) {
+  return valid && view.width == push.view.width && view.height == push.view.height;
+}
+
+void add_restir_sums(std::span<const RestirTexel> sums, int spp, RestirKind kind, FrameOutput& frame) {
+  const float inv_spp = 1.0f / float(spp);
+  const int width = frame.color.width;
+  Image& layer = kind == RestirKind::direct ? frame.direct : frame.indirect;
+  for (size_t i = 0; i < sums.size(); ++i) {
+    const RestirTexel& t = sums[i];
+    const int x = int(i % size_t(width)), y = int(i / size_t(width));
+    const vec3 d = t.direct * inv_spp;
+    layer.set_rgb(x, y, layer.rgb(x, y) + d);
+    frame.color.set_rgb(x, y, frame.color.rgb(x, y) + d);
+    frame.counters.primary_rays += t.primary_rays;
+    frame.counters.shadow_rays += t.shadow_rays;
+    frame.counters.bounce_rays += t.bounce_rays;
+    frame.counters.nonfinite_samples += t.nonfinite;
+  }
+}
+
+void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& base, const RestirReuse& reuse,
+                RestirHistory& history, const char* stage_name, StageTimer& timer, FrameOutput& frame) {
+  const size_t pixels = size_t(ctx.width) * size_t(ctx.height);
+  const Scene& scene = ctx.scene;
+  const PackedLights& lights = ctx.lights.packed();
+  const EmbreeAccel& accel = ctx.accel;
+  const bool diffuse_only = (base.flags & RESTIR_DIFFUSE_ONLY) != 0u;
+  const bool unbiased = (base.flags & RESTIR_UNBIASED) != 0u;
+  std::vector<RestirSurface> surfaces(pixels);
+  std::vector<RestirReservoir> reservoirs(pixels), next(pixels);
+  std::vector<RestirTexel> sums(pixels, RestirTexel{});
+  RayCounters unused;  // the rays are counted per pixel, in the sums
+  // One pass over every pixel: fn(pixel index, x, y, counters).
+  auto pass_over = [&](auto&& fn) {
+    for_each_pixel(ctx.width, ctx.height, true, stage_name, unused, [&](int x, int y, RayCounters&) {
+      const size_t i = size_t(y) * size_t(ctx.width) + size_t(x);
+      PathCounters c = path_counters();
+      fn(i, uint(x), uint(y), c);
+      add_to_texel(c, sums[i]);
+    });
+  };
+  timer.time(stage_name, [&] {
+    for (int round = 0; round < ctx.options.spp; ++round) {
+      // A frame's rounds are independent estimates (chained, they were correlated and their mean
+      // measured worse); its first round continues the previous frame's last.
+      const bool temporal = round == 0 && reuse.temporal &&
+                            restir_history_usable(history.valid, history.view, restir_round_push(base, 0, 0, false));
+      const RestirPush push = restir_round_push(base, uint32_t(round), 0u, temporal);
+      pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
+        surfaces[i] = restir_camera(scene, accel, push.view, x, y, uint(round), c);
+        if (kind == RestirKind::direct) {
+          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamInitial);
+          reservoirs[i] = restir_di_initial(scene, lights, accel, surfaces[i], diffuse_only, push.light_candidates,
+                                            push.brdf_candidates, rng, c);
+        } else {
+          PixelSampler ps = pixel_sampler(push.view.seed ^ kRestirGiSeed, uint(i), uint(round));
+          reservoirs[i] = restir_gi_initial(scene, lights, accel, surfaces[i], diffuse_only, push.max_bounces,
+                                            push.rr_min_bounces, ps, c);
+        }
+      });
+      if (temporal) {
+        const RestirFrame in{surfaces, reservoirs, history};
+        pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
+          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamTemporal);
+          next[i] = restir_temporal(scene, lights, accel, in, x, y, history.view, diffuse_only, push.temporal_cap,
+                                    unbiased, rng, c);
+        });
+        std::swap(reservoirs, next);
+      }
+      for (int pass = 0; pass < reuse.spatial_passes; ++pass) {
+        const RestirFrame in{surfaces, reservoirs, history};
+        pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
+          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamSpatial + uint(pass));
+          next[i] = restir_spatial(scene, lights, accel, in, x, y, uint(ctx.width), uint(ctx.height), diffuse_only,
+                                   push.neighbours, push.radius, unbiased, rng, c);
+        });
+        std::swap(reservoirs, next);
+      }
+      pass_over([&](size_t i, uint, uint, PathCounters&) {
+        vec3 d = restir_shade(scene, lights, surfaces[i], diffuse_only, reservoirs[i]);
+        // A NaN or Inf estimate is a bug to find, not a pixel to show: drop and count it.
+        if (!is_finite(d)) ++sums[i].nonfinite;
+        else sums[i].direct = sums[i].direct + d;
+      });
+      // This round is the next one's history (the buffers swap, the next round overwrites).
+      std::swap(history.surfaces, surfaces);
+      std::swap(history.reservoirs, reservoirs);
+      surfaces.resize(pixels);
+      reservoirs.resize(pixels);
+      history.view = push.view;
+      history.valid = true;
+    }
+  });
+  add_restir_sums(sums, ctx.options.spp, kind, frame);
+}
+
+}  // namespace sst

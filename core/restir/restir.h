@@ -1,0 +1,61 @@
+// ReSTIR's schedule of passes over a frame, for ReSTIR DI (every method's direct light,
+// core/restir/restir_di.h) and ReSTIR GI (the method `restir_gi`, core/restir/restir_gi.h): `spp`
+// independent rounds, each its initial pass, a temporal pass (the frame's first round, with
+// history), the spatial passes and the shading pass (core/restir/restir_stages.h). This is the
+// CPU's schedule; gpu/restir_pass.h is the GPU's, the same passes in the same order, and both add
+// their sums to the frame through add_restir_sums, so the backends give the same bits (with
+// --accel flat). The algorithm and its parameters: docs/restir.md.
+#pragma once
+#include <span>
+#include <vector>
+
+#include "core/render/method.h"
+#include "core/restir/restir_layout.h"
+#include "core/util/stage_timer.h"
+
+namespace sst {
+
+// Which light a schedule estimates: its initial pass, and the layer its sums go to.
+enum class RestirKind { direct, indirect };
+
+// The reuse every ReSTIR shares (RestirDiParams', RestirGiParams').
+struct RestirReuse {
+  bool temporal = true;
+  float temporal_cap = 1.0f;
+  int spatial_passes = 1;
+  int neighbours = 5;
+  float radius = 30.0f;
+  bool unbiased = true;
+};
+
+// What temporal reuse keeps between frames: the last round's first hits, its final reservoirs and
+// the view it saw them with.
+struct RestirHistory {
+  std::vector<RestirSurface> surfaces;
+  std::vector<RestirReservoir> reservoirs;
+  glsl::ViewParams view{};
+  bool valid = false;
+};
+
+// The push constants every round of ctx starts from: the view, the ray offset, the reuse; the
+// caller adds its initial pass's fields.
+RestirPush restir_push(const RenderContext& ctx, float ray_epsilon, const RestirReuse& reuse);
+
+// `base` for round `round` and spatial pass `pass`, with or without a temporal pass.
+RestirPush restir_round_push(const RestirPush& base, uint32_t round, uint32_t pass, bool temporal);
+
+// Whether history of `view` (valid) can serve a round of `push`: the same image size.
+bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirPush& push);
+
+// Runs ctx.options.spp rounds on the CPU from `base` (restir_push and the initial pass's fields)
+// and adds them to `frame` (add_restir_sums). `history` carries the last round to the next
+// frame's first; timed as stage `stage`.
+void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& base, const RestirReuse& reuse,
+                RestirHistory& history, const char* stage, StageTimer& timer, FrameOutput& frame);
+
+// The per-pixel sums of `spp` rounds (row-major, the frame's size) added to `frame`: the direct
+// (kind direct) or indirect layer and the colour gain sum / spp, the counters the rays, and a
+// non-finite round is counted.
+void add_restir_sums(std::span<const RestirTexel> sums, int spp, RestirKind kind, FrameOutput& frame);
+
+}  // namespace sst

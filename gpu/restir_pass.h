@@ -1,0 +1,43 @@
+// ReSTIR on the GPU (gpu/shaders/restir.comp): the twin of run_restir (core/restir/restir.h), the
+// same passes in the same order per pixel, so that with --accel flat the backends add the same
+// bits to a frame. ReSTIR DI as every method's direct light here; ReSTIR GI's method in
+// gpu/restir_gi_vulkan.h.
+#pragma once
+#include <array>
+#include <memory>
+
+#include "core/render/frame_layout.h"
+#include "core/render/method.h"
+#include "core/restir/restir.h"
+#include "core/util/stage_timer.h"
+#include "gpu/compute_pipeline.h"
+#include "gpu/gpu_buffer.h"
+
+namespace sst::gpu {
+
+class GpuRenderContext;
+
+// The five stages' pipelines (restir_0 .. _4), compiled for gpu's light sampler and acceleration
+// structure.
+struct RestirPipelines {
+  std::array<std::unique_ptr<ComputePipeline>, 5> stages;
+};
+std::unique_ptr<RestirPipelines> make_restir_pipelines(const GpuRenderContext& gpu);
+
+// RestirHistory (core/restir/restir.h) on the device.
+struct GpuRestirHistory {
+  std::unique_ptr<GpuBuffer> surfaces, reservoirs, view;
+  glsl::ViewParams view_params{};
+  bool valid = false;
+};
+
+// run_restir on the GPU. Records the dispatches' times in frame.method_counters["gpu_ms"][stage].
+void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPipelines& pipelines, RestirKind kind,
+                const RestirPush& base, const RestirReuse& reuse, GpuRestirHistory& history, const char* stage,
+                StageTimer& timer, FrameOutput& frame);
+
+// add_restir_direct (core/restir/restir_di.h) on the GPU.
+void add_restir_direct(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPipelines& pipelines,
+                       StageTimer& timer, FrameOutput& frame, GpuRestirHistory& history);
+
+}  // namespace sst::gpu

@@ -243,6 +243,30 @@ SST_FUNC bool light_sample_punctual(vec3 p, SST_IN(LightPunctual) light, float p
   return true;
 }
 
+// The point at barycentrics b of emissive triangle `tri` (vertices v0 v1 v2) seen from p: s gets
+// the direction to it, its distance, the radiance it sends toward p, the point, the triangle's
+// normal and the point's ray offset (the pdf is the caller's, from `d2` and `cos_light`, the
+// normal's cosine with the way to p). False where the point is p or is seen edge-on.
+SST_FUNC bool light_triangle_point(SCENE_CTX_PARAM vec3 p, uint tri, vec3 v0, vec3 v1, vec3 v2, vec2 b,
+                                   SST_INOUT(LightSample) s, SST_OUT(float) d2, SST_OUT(float) cos_light) {
+  cos_light = 0.0f;
+  vec3 y = barycentric_mix3(v0, v1, v2, b);
+  SST_PRECISE vec3 d = y - p;
+  d2 = dot3(d, d);
+  if (!(d2 > 0.0f)) return false;
+  s.distance = sqrt(d2);
+  SST_PRECISE vec3 wi = d / s.distance;
+  s.wi = wi;
+  vec3 ng = triangle_geometric_normal(SCENE_CTX tri);
+  cos_light = dot3(ng, -s.wi);
+  if (cos_light == 0.0f) return false;
+  s.li = triangle_emission(SCENE_CTX tri, b, cos_light > 0.0f);
+  s.point = y;
+  s.normal = ng;
+  s.offset = triangle_point_offset(v0, v1, v2, y, ng);
+  return true;
+}
+
 // `b` receives the point's barycentrics on the triangle (the point is barycentric_mix3 of them).
 SST_FUNC bool light_sample_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint k, float pick, vec2 u,
                                     SST_INOUT(LightSample) s, SST_OUT(vec2) b) {
@@ -256,20 +280,9 @@ SST_FUNC bool light_sample_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM vec3 p, uint
   bool spherical = uses_solid_angle_sampling(p, v0, v1, v2) &&
                    sample_spherical_triangle(p, v0, v1, v2, u, b, solid_angle_pdf);
   if (!spherical) b = sample_uniform_triangle(u.x, u.y);
-  vec3 y = barycentric_mix3(v0, v1, v2, b);
-  SST_PRECISE vec3 d = y - p;
-  float d2 = dot3(d, d);
-  if (!(d2 > 0.0f)) return false;
-  s.distance = sqrt(d2);
-  SST_PRECISE vec3 wi = d / s.distance;
-  s.wi = wi;
-  vec3 ng = triangle_geometric_normal(SCENE_CTX tri);
-  float cos_light = dot3(ng, -s.wi);
-  if (cos_light == 0.0f) return false;
-  s.li = triangle_emission(SCENE_CTX tri, b, cos_light > 0.0f);
-  s.point = y;
-  s.normal = ng;
-  s.offset = triangle_point_offset(v0, v1, v2, y, ng);
+  float d2;
+  float cos_light;
+  if (!light_triangle_point(SCENE_CTX p, tri, v0, v1, v2, b, s, d2, cos_light)) return false;
   SST_PRECISE float area_pdf = pick / e.area * d2 / abs(cos_light);
   SST_PRECISE float sphere_pdf = pick * solid_angle_pdf;
   s.pdf = spherical ? sphere_pdf : area_pdf;

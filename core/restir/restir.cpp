@@ -29,15 +29,6 @@ struct RestirFrame {
 #include "core/restir/restir_gi_stages.h"
 
 namespace sst {
-namespace {
-
-void add_to_texel(const PathCounters& c, RestirTexel& t) {
-  t.primary_rays += c.primary_rays;
-  t.shadow_rays += c.shadow_rays;
-  t.bounce_rays += c.bounce_rays;
-}
-
-}  // namespace
 
 RestirPush restir_push(const RenderContext& ctx, float ray_epsilon, const RestirReuse& reuse) {
   RestirPush push{};
@@ -87,10 +78,9 @@ void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& bas
   const PackedLights& lights = ctx.lights.packed();
   const EmbreeAccel& accel = ctx.accel;
   const bool diffuse_only = (base.flags & RESTIR_DIFFUSE_ONLY) != 0u;
-  const bool unbiased = (base.flags & RESTIR_UNBIASED) != 0u;
   std::vector<RestirSurface> surfaces(pixels);
   std::vector<RestirReservoir> reservoirs(pixels), next(pixels);
-  std::vector<RestirTexel> sums(pixels, RestirTexel{});
+  std::vector<RestirTexel> sums(pixels, restir_texel_empty());
   RayCounters unused;  // the rays are counted per pixel, in the sums
   // One pass over every pixel: fn(pixel index, x, y, counters).
   auto pass_over = [&](auto&& fn) {
@@ -98,51 +88,38 @@ void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& bas
       const size_t i = size_t(y) * size_t(ctx.width) + size_t(x);
       PathCounters c = path_counters();
       fn(i, uint(x), uint(y), c);
-      add_to_texel(c, sums[i]);
+      restir_texel_count(sums[i], c);
     });
   };
   timer.time(stage_name, [&] {
     for (int round = 0; round < ctx.options.spp; ++round) {
       // A frame's rounds are independent estimates (chained, they were correlated and their mean
       // measured worse); its first round continues the previous frame's last.
-      const bool temporal = round == 0 && reuse.temporal &&
-                            restir_history_usable(history.valid, history.view, restir_round_push(base, 0, 0, false));
+      const bool temporal =
+          round == 0 && reuse.temporal && restir_history_usable(history.valid, history.view, base);
       const RestirPush push = restir_round_push(base, uint32_t(round), 0u, temporal);
       pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
-        surfaces[i] = restir_camera(scene, accel, push.view, x, y, uint(round), c);
-        if (kind == RestirKind::direct) {
-          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamInitial);
-          reservoirs[i] = restir_di_initial(scene, lights, accel, surfaces[i], diffuse_only, push.light_candidates,
-                                            push.brdf_candidates, rng, c);
-        } else {
-          PixelSampler ps = pixel_sampler(push.view.seed ^ kRestirGiSeed, uint(i), uint(round));
-          reservoirs[i] = restir_gi_initial(scene, lights, accel, surfaces[i], diffuse_only, push.max_bounces,
-                                            push.rr_min_bounces, ps, c);
-        }
+        reservoirs[i] = kind == RestirKind::direct
+                            ? restir_di_initial_pixel(scene, lights, accel, push, x, y, surfaces[i], c)
+                            : restir_gi_initial_pixel(scene, lights, accel, push, x, y, surfaces[i], c);
       });
       if (temporal) {
         const RestirFrame in{surfaces, reservoirs, history};
         pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
-          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamTemporal);
-          next[i] = restir_temporal(scene, lights, accel, in, x, y, history.view, diffuse_only, push.temporal_cap,
-                                    unbiased, rng, c);
+          next[i] = restir_temporal_pixel(scene, lights, accel, in, push, x, y, history.view, c);
         });
         std::swap(reservoirs, next);
       }
       for (int pass = 0; pass < reuse.spatial_passes; ++pass) {
         const RestirFrame in{surfaces, reservoirs, history};
+        const RestirPush pass_push = restir_round_push(base, uint32_t(round), uint32_t(pass), temporal);
         pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
-          HashRng rng = hash_rng(push.view.seed, uint(i), uint(round), kRestirStreamSpatial + uint(pass));
-          next[i] = restir_spatial(scene, lights, accel, in, x, y, uint(ctx.width), uint(ctx.height), diffuse_only,
-                                   push.neighbours, push.radius, unbiased, rng, c);
+          next[i] = restir_spatial_pixel(scene, lights, accel, in, pass_push, x, y, c);
         });
         std::swap(reservoirs, next);
       }
       pass_over([&](size_t i, uint, uint, PathCounters&) {
-        vec3 d = restir_shade(scene, lights, surfaces[i], diffuse_only, reservoirs[i]);
-        // A NaN or Inf estimate is a bug to find, not a pixel to show: drop and count it.
-        if (!is_finite(d)) ++sums[i].nonfinite;
-        else sums[i].direct = sums[i].direct + d;
+        restir_texel_add(sums[i], restir_shade(scene, lights, surfaces[i], diffuse_only, reservoirs[i]));
       });
       // This round is the next one's history (the buffers swap, the next round overwrites).
       std::swap(history.surfaces, surfaces);

@@ -89,6 +89,18 @@ SST_FUNC RestirReservoir restir_di_initial(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_C
   return r;
 }
 
+// Pixel (x, y)'s initial pass for the round of `push`: its camera ray's first hit (into `s`) and
+// its initial reservoir.
+SST_FUNC RestirReservoir restir_di_initial_pixel(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN(RestirPush) push,
+                                                 uint x, uint y, SST_OUT(RestirSurface) s,
+                                                 SST_INOUT(PathCounters) counters) {
+  uint round = push.view.sample_offset;
+  s = restir_camera(SCENE_CTX RAY_CTX push.view, x, y, round, counters);
+  HashRng rng = hash_rng(push.view.seed, y * push.view.width + x, round, kRestirStreamInitial);
+  return restir_di_initial(SCENE_CTX LIGHT_CTX RAY_CTX s, (push.flags & RESTIR_DIFFUSE_ONLY) != 0u,
+                           push.light_candidates, push.brdf_candidates, rng, counters);
+}
+
 SST_END
 
 #endif  // SST_CORE_RESTIR_RESTIR_DI_STAGES_H

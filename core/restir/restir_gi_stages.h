@@ -78,6 +78,18 @@ SST_FUNC RestirReservoir restir_gi_initial(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_C
   return candidate;
 }
 
+// Pixel (x, y)'s initial pass for the round of `push`: its camera ray's first hit (into `s`) and
+// its initial reservoir.
+SST_FUNC RestirReservoir restir_gi_initial_pixel(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN(RestirPush) push,
+                                                 uint x, uint y, SST_OUT(RestirSurface) s,
+                                                 SST_INOUT(PathCounters) counters) {
+  uint round = push.view.sample_offset;
+  s = restir_camera(SCENE_CTX RAY_CTX push.view, x, y, round, counters);
+  PixelSampler ps = pixel_sampler(push.view.seed ^ kRestirGiSeed, y * push.view.width + x, round);
+  return restir_gi_initial(SCENE_CTX LIGHT_CTX RAY_CTX s, (push.flags & RESTIR_DIFFUSE_ONLY) != 0u, push.max_bounces,
+                           push.rr_min_bounces, ps, counters);
+}
+
 SST_END
 
 #endif  // SST_CORE_RESTIR_RESTIR_GI_STAGES_H

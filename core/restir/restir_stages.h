@@ -389,6 +389,60 @@ SST_FUNC vec3 restir_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM SST_IN(RestirSurface)
   return product_exact(c, vec3(r.weight));
 }
 
+// ---- one pixel of each pass, as both schedules run it ------------------------------------------
+// Each takes the round's push constants (RestirPush: view.sample_offset is the round, `pass` the
+// spatial pass) and draws from its own random stream.
+
+// A pixel's sums before a frame's first round.
+SST_FUNC RestirTexel restir_texel_empty() {
+  RestirTexel t;
+  t.direct = vec3(0.0f);
+  t.primary_rays = 0u;
+  t.shadow_rays = 0u;
+  t.bounce_rays = 0u;
+  t.nonfinite = 0u;
+  t.pad0 = 0u;
+  return t;
+}
+
+// The rays a pass traced for the pixel, added to its sums.
+SST_FUNC void restir_texel_count(SST_INOUT(RestirTexel) t, SST_IN(PathCounters) c) {
+  t.primary_rays += c.primary_rays;
+  t.shadow_rays += c.shadow_rays;
+  t.bounce_rays += c.bounce_rays;
+}
+
+// A round's estimate d added to the pixel's sums. A NaN or Inf estimate is a bug to find, not a
+// pixel to show: it is dropped and counted.
+SST_FUNC void restir_texel_add(SST_INOUT(RestirTexel) t, vec3 d) {
+  if (!is_finite3(d)) {
+    t.nonfinite += 1u;
+    return;
+  }
+  SST_PRECISE vec3 sum = t.direct + d;
+  t.direct = sum;
+}
+
+// Pixel (x, y)'s temporal pass (restir_temporal) over the history seen by `previous`.
+SST_FUNC RestirReservoir restir_temporal_pixel(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM RESTIR_CTX_PARAM
+                                               SST_IN(RestirPush) push, uint x, uint y, SST_IN(ViewParams) previous,
+                                               SST_INOUT(PathCounters) counters) {
+  HashRng rng = hash_rng(push.view.seed, y * push.view.width + x, push.view.sample_offset, kRestirStreamTemporal);
+  return restir_temporal(SCENE_CTX LIGHT_CTX RAY_CTX RESTIR_CTX x, y, previous, (push.flags & RESTIR_DIFFUSE_ONLY) != 0u,
+                         push.temporal_cap, (push.flags & RESTIR_UNBIASED) != 0u, rng, counters);
+}
+
+// Pixel (x, y)'s spatial pass number push.pass (restir_spatial).
+SST_FUNC RestirReservoir restir_spatial_pixel(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM RESTIR_CTX_PARAM
+                                              SST_IN(RestirPush) push, uint x, uint y,
+                                              SST_INOUT(PathCounters) counters) {
+  HashRng rng = hash_rng(push.view.seed, y * push.view.width + x, push.view.sample_offset,
+                         kRestirStreamSpatial + push.pass);
+  return restir_spatial(SCENE_CTX LIGHT_CTX RAY_CTX RESTIR_CTX x, y, push.view.width, push.view.height,
+                        (push.flags & RESTIR_DIFFUSE_ONLY) != 0u, push.neighbours, push.radius,
+                        (push.flags & RESTIR_UNBIASED) != 0u, rng, counters);
+}
+
 SST_END
 
 #endif  // SST_CORE_RESTIR_RESTIR_STAGES_H

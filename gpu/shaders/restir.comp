@@ -44,67 +44,33 @@ layout(push_constant) uniform Push { RestirPush push; };
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-void add_counters(inout RestirTexel t, PathCounters c) {
-  t.primary_rays += c.primary_rays;
-  t.shadow_rays += c.shadow_rays;
-  t.bounce_rays += c.bounce_rays;
-}
-
 void main() {
   uvec2 xy = gl_GlobalInvocationID.xy;
-  ViewParams view = push.view;
-  if (xy.x >= view.width || xy.y >= view.height) return;
-  uint pixel = xy.y * view.width + xy.x;
-  uint round = view.sample_offset;
-  bool diffuse_only = (push.flags & RESTIR_DIFFUSE_ONLY) != 0u;
+  RestirPush round_push = push;
+  if (xy.x >= round_push.view.width || xy.y >= round_push.view.height) return;
+  uint pixel = xy.y * round_push.view.width + xy.x;
   PathCounters c = path_counters();
 #if RESTIR_STAGE == 0 || RESTIR_STAGE == 4
-  RestirTexel t;
-  if (round == 0u) {
-    t.direct = vec3(0.0);
-    t.primary_rays = 0u;
-    t.shadow_rays = 0u;
-    t.bounce_rays = 0u;
-    t.nonfinite = 0u;
-    t.pad0 = 0u;
-  } else {
-    t = texels[pixel];
-  }
-  RestirSurface s = restir_camera(view, xy.x, xy.y, round, c);
-  surfaces[pixel] = s;
+  // (Not a ?: of the two: glslang would select between the buffer's struct type and the plain one.)
+  RestirTexel t = restir_texel_empty();
+  if (round_push.view.sample_offset != 0u) t = texels[pixel];
+  RestirSurface s;
 #if RESTIR_STAGE == 0
-  HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamInitial);
-  reservoirs_out[pixel] = restir_di_initial(s, diffuse_only, push.light_candidates, push.brdf_candidates, rng, c);
+  reservoirs_out[pixel] = restir_di_initial_pixel(round_push, xy.x, xy.y, s, c);
 #else
-  PixelSampler ps = pixel_sampler(view.seed ^ kRestirGiSeed, pixel, round);
-  reservoirs_out[pixel] = restir_gi_initial(s, diffuse_only, push.max_bounces, push.rr_min_bounces, ps, c);
+  reservoirs_out[pixel] = restir_gi_initial_pixel(round_push, xy.x, xy.y, s, c);
 #endif
-  add_counters(t, c);
-  texels[pixel] = t;
+  surfaces[pixel] = s;
 #elif RESTIR_STAGE == 1
-  HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamTemporal);
-  reservoirs_out[pixel] = restir_temporal(xy.x, xy.y, history_view, diffuse_only, push.temporal_cap,
-                                          (push.flags & RESTIR_UNBIASED) != 0u, rng, c);
+  reservoirs_out[pixel] = restir_temporal_pixel(round_push, xy.x, xy.y, history_view, c);
   RestirTexel t = texels[pixel];
-  add_counters(t, c);
-  texels[pixel] = t;
 #elif RESTIR_STAGE == 2
-  HashRng rng = hash_rng(view.seed, pixel, round, kRestirStreamSpatial + push.pass);
-  reservoirs_out[pixel] = restir_spatial(xy.x, xy.y, view.width, view.height, diffuse_only, push.neighbours,
-                                         push.radius, (push.flags & RESTIR_UNBIASED) != 0u, rng, c);
+  reservoirs_out[pixel] = restir_spatial_pixel(round_push, xy.x, xy.y, c);
   RestirTexel t = texels[pixel];
-  add_counters(t, c);
-  texels[pixel] = t;
 #else
-  vec3 d = restir_shade(surfaces[pixel], diffuse_only, reservoirs_in[pixel]);
   RestirTexel t = texels[pixel];
-  // A NaN or Inf estimate is a bug to find, not a pixel to show: drop and count it.
-  if (!is_finite3(d)) {
-    t.nonfinite += 1u;
-  } else {
-    precise vec3 sum = t.direct + d;
-    t.direct = sum;
-  }
-  texels[pixel] = t;
+  restir_texel_add(t, restir_shade(surfaces[pixel], (round_push.flags & RESTIR_DIFFUSE_ONLY) != 0u, reservoirs_in[pixel]));
 #endif
+  restir_texel_count(t, c);
+  texels[pixel] = t;
 }

@@ -37,6 +37,8 @@ def main():
         ref = rec["metrics"]["mean_reference"]
         bias = [ind / (r - d) - 1.0 if r - d > 0 else float("nan") for ind, r, d in zip(indirect, ref, direct)]
         key = (rec["scene"],) + tuple(sorted((k, str(v)) for k, v in rec["axes"].items()))
+        if rec.get("variant"):
+            key += (("variant", rec["variant"]),)
         groups.setdefault(key, []).append((rec["metrics"]["rmse"], rec["metrics"]["ssim"], bias))
     axes = [k for k, _ in next(iter(groups))[1:]] if groups else []
     if markdown:

@@ -170,9 +170,11 @@ SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CT
   r.flags |= GI10_RAY_SHADOW;
   gi_accumulate(GI_CTX r.cell, lo);
   // A hit closer than a cell would read light from the probe's own surface neighbourhood through
-  // the cell: it keeps its own sample instead (the cell is fed all the same).
+  // the cell: it keeps its own sample instead (the cell is fed all the same). Without the cache
+  // lookup every ray does.
   Gi10Pixel px = gi_pixel(GI_CTX gi_parity(GF), gi_pixel_index(GF, gi_unpack(GI_SPAWN(index / 64u))));
-  if ((GF.flags & GI10_BYPASS) != 0u && length3(r.x2 - px.position) < r.cell_size) {
+  bool own = (GF.flags & GI10_CACHE_LOOKUP) == 0u;
+  if (own || ((GF.flags & GI10_BYPASS) != 0u && length3(r.x2 - px.position) < r.cell_size)) {
     r.flags |= GI10_RAY_BYPASS;
     r.radiance += lo;
     GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_BYPASS), 1u);

@@ -22,6 +22,10 @@ using glm::vec4;
 #define GI10_PROBE_FILTER 64u       // filter probes across neighbours (S17; the driver skips its stages without it)
 #define GI10_DENOISE 128u           // GI-1.0's temporal denoiser (S20); else E_out = interpolated E
 #define GI10_GUIDING 256u           // probe rays guided by the reconstructed radiance; else one per texel
+#define GI10_HYSTERESIS 512u        // traced texels blended with their reconstruction (paper Algorithm 3)
+#define GI10_TEXEL_EXPECTED 1024u   // a texel's rays summed over the rays expected there, not averaged (no fill)
+#define GI10_CACHE_LOOKUP 2048u     // probe rays read their cell's average; else each keeps its own sample
+#define GI10_IRRADIANCE_TEXELS 4096u  // S19 integrates the probes' texels, not their L2 SH
 
 // Stage numbers of the one GPU entry point (gpu/shaders/gi10.comp), in execution order.
 #define GI10_STAGE_GBUFFER 0u
@@ -125,11 +129,12 @@ struct Gi10Pixel {
 #define GI10_RAY_EMISSIVE 64u  // it hit an emitter and returns the emission
 
 // One probe ray: the direction chosen by the sample stage, its probe's reconstructed texel (for
-// the hysteresis), the secondary vertex and the radiance it brings back.
+// the hysteresis), the secondary vertex and the radiance it brings back. The record of lane c also
+// carries texel c's reconstruction and expected ray count, whichever texel the ray itself lands in.
 struct Gi10Ray {
   vec3 direction;
-  float recon_distance;  // the reconstruction's mean hit distance in this ray's texel; < 0: none
-  vec3 recon;            // the reconstruction's radiance in this ray's texel
+  float recon_distance;  // the reconstruction's mean hit distance in texel <lane>; < 0: none
+  vec3 recon;            // the reconstruction's radiance in texel <lane>
   float t;               // hit distance; kGiMissDistance for a miss
   vec3 x2;               // the secondary vertex
   uint cell;             // its cache cell (mip 0 index); valid with GI10_RAY_CELL
@@ -140,7 +145,7 @@ struct Gi10Ray {
   vec3 albedo2;          // base colour at x2
   float cell_size;       // edge of its cache cell (the bypass test)
   vec3 radiance;         // what the ray brings back to its probe
-  float pad1;
+  float expected;        // how many of its probe's 64 rays are expected to land in texel <its lane>
 };
 
 // Push constants of gpu/shaders/gi10.comp: which stage, and its pass (filter direction, mip).

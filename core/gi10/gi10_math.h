@@ -108,15 +108,17 @@ SST_FUNC uint gi_texel_of(SST_IN(GiFrame) f, vec3 w) { return gi_texel_of_local(
 
 // ---- L2 spherical harmonics (real basis, world space) -------------------------------------------
 SST_FUNC float gi_sh_basis(uint k, vec3 d) {
-  if (k == 0u) return 0.282095f;
-  if (k == 1u) return -0.488603f * d.y;
-  if (k == 2u) return 0.488603f * d.z;
-  if (k == 3u) return -0.488603f * d.x;
-  if (k == 4u) return 1.092548f * d.x * d.y;
-  if (k == 5u) return -1.092548f * d.y * d.z;
-  if (k == 6u) return 0.946175f * d.z * d.z - 0.315392f;
-  if (k == 7u) return -1.092548f * d.x * d.z;
-  return 0.546274f * (d.x * d.x - d.y * d.y);
+  // precise: a GPU compiler may fuse k6's and k8's multiply-adds, the CPU does not.
+  SST_PRECISE float b = 0.546274f * (d.x * d.x - d.y * d.y);
+  if (k == 0u) b = 0.282095f;
+  else if (k == 1u) b = -0.488603f * d.y;
+  else if (k == 2u) b = 0.488603f * d.z;
+  else if (k == 3u) b = -0.488603f * d.x;
+  else if (k == 4u) b = 1.092548f * d.x * d.y;
+  else if (k == 5u) b = -1.092548f * d.y * d.z;
+  else if (k == 6u) b = 0.946175f * d.z * d.z - 0.315392f;
+  else if (k == 7u) b = -1.092548f * d.x * d.z;
+  return b;
 }
 
 // The clamped-cosine lobe's band factors (pi, 2 pi / 3, pi / 4) times the basis at normal n: the

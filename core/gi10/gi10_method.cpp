@@ -169,6 +169,10 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   if (p.probe_filter) r.flags |= GI10_PROBE_FILTER;
   if (p.guiding) r.flags |= GI10_GUIDING;
   if (p.irradiance_denoiser) r.flags |= GI10_DENOISE;
+  if (p.hysteresis) r.flags |= GI10_HYSTERESIS;
+  if (choice("texel_estimate", p.texel_estimate, {"fill", "expected"}) == "expected") r.flags |= GI10_TEXEL_EXPECTED;
+  if (p.cache_lookup) r.flags |= GI10_CACHE_LOOKUP;
+  if (choice("irradiance_basis", p.irradiance_basis, {"sh", "texels"}) == "texels") r.flags |= GI10_IRRADIANCE_TEXELS;
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0)) throw Error(std::string("gi10 parameter ") + name + " must be > 0 (got " + std::to_string(v) + ")");
   };

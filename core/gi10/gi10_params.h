@@ -36,6 +36,10 @@ struct Gi10Params {
   bool irradiance_denoiser = true;
   bool bypass = true;
   bool short_ray_bit = true;
+  bool hysteresis = true;
+  std::string texel_estimate = "fill";
+  bool cache_lookup = true;
+  std::string irradiance_basis = "sh";
 
   template <class V>
   void visit(V&& v) {
@@ -80,6 +84,17 @@ struct Gi10Params {
     v("irradiance_denoiser", irradiance_denoiser, "GI-1.0's own temporal denoiser; off: the interpolated irradiance");
     v("bypass", bypass, "probe rays shorter than a cell keep their own light sample instead of the cell's");
     v("short_ray_bit", short_ray_bit, "the short-ray bit (hit closer than a hash tile) in the cache key");
+    // The four below replace a biased mechanism of the paper by its exact form, for measuring
+    // what each contributes to the bias (docs/design/gi10.md, "Where the bias comes from").
+    v("hysteresis", hysteresis, "the paper's shadow-preserving hysteresis (Algorithm 3) blends a traced texel with its "
+      "reconstruction; off: the new value alone (no temporal blend of probe radiance)");
+    v("texel_estimate", texel_estimate, "fill|expected: a traced texel's radiance is the mean of the rays that landed "
+      "in it, empty texels filled by `backup` (fill, the paper), or the sum of its rays over the number guiding expected "
+      "there, which is unbiased and needs no fill (expected)");
+    v("cache_lookup", cache_lookup, "probe rays read their cache cell's average (S13); off: every ray keeps its own "
+      "light sample or feedback value (the cache still fills), the cache's exact form");
+    v("irradiance_basis", irradiance_basis, "sh|texels: a pixel's irradiance from its probes' L2 SH (the paper) or "
+      "from the cosine integrated over their 64 texels (no SH truncation)");
   }
 };
 

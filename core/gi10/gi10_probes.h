@@ -333,13 +333,18 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
     cdf[c + 1u] = cdf[c] + w;
   }
   float total = cdf[64];
+  bool guided_run = (GF.flags & GI10_GUIDING) != 0u && total > 0.0f;
+  float guided_lanes = 0.0f;
+  for (uint c = 0u; c < 64u; ++c)
+    if (guided_run && a.count[c] > 0.0f) guided_lanes += 1.0f;
   for (uint c = 0u; c < 64u; ++c) {
     HashRng rng = gi_rng(GF, GI10_STAGE_SAMPLE, j * 64u + c);
     float u = hash_rng_next(rng);
     // A lane whose own texel had history draws from the distribution; one without explores its
     // own texel (with no weight anywhere, every lane explores its own).
     uint texel = c;
-    if ((GF.flags & GI10_GUIDING) != 0u && a.count[c] > 0.0f && total > 0.0f) {
+    bool guided = guided_run && a.count[c] > 0.0f;
+    if (guided) {
       float target = u * total;
       texel = 0u;
       for (uint k = 1u; k < 64u; ++k)
@@ -364,7 +369,9 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
     r.albedo2 = vec3(0.0f);
     r.cell_size = 0.0f;
     r.radiance = vec3(0.0f);
-    r.pad1 = 0.0f;
+    // Texel c receives each guided lane's ray with probability w_c / total, and lane c's own when
+    // it explores.
+    r.expected = (guided ? 0.0f : 1.0f) + (guided_run ? guided_lanes * ((cdf[c + 1u] - cdf[c]) / total) : 0.0f);
     GI_RAYS(j * 64u + c) = r;
   }
 }
@@ -386,10 +393,18 @@ SST_FUNC void gi_stage_blend(GI_CTX_PARAM uint j) {
     a.count[r.texel] += 1.0f;
   }
   vec3 backup = gi_backup(a, (GF.flags & GI10_BACKUP_MEAN) != 0u);
+  bool expected = (GF.flags & GI10_TEXEL_EXPECTED) != 0u;
   for (uint c = 0u; c < 64u; ++c) {
     vec4 value = gi_sums_texel(a, c, backup);
     Gi10Ray r = GI_RAYS(j * 64u + c);
-    if (r.recon_distance >= 0.0f) {
+    // The unbiased alternative to the paper's fill: the texel's radiance summed over its rays and
+    // divided by how many were expected, so a texel guiding rarely samples is 0 mostly and large
+    // when hit. A texel no ray could reach (weight 0) keeps its reconstruction.
+    if (expected && r.expected > 0.0f)
+      value = gi_vec4(gi_rgb(a.sum[c]) / r.expected, a.count[c] > 0.0f ? a.sum[c].w / a.count[c] : kGiMissDistance);
+    else if (expected && r.recon_distance >= 0.0f)
+      value = gi_vec4(r.recon, r.recon_distance);
+    if (r.recon_distance >= 0.0f && (GF.flags & GI10_HYSTERESIS) != 0u) {
       vec4 history = gi_vec4(r.recon, r.recon_distance);
       float alpha = gi_hysteresis(luminance(gi_rgb(value)), luminance(r.recon));
       value = value + (history - value) * alpha;
@@ -484,7 +499,7 @@ SST_FUNC void gi_stage_project(GI_CTX_PARAM uint j) {
   uvec2 seed = gi_unpack(packed);
   uint tile = gi_tile_of(GF, seed);
   GiFrame fx = gi_frame(gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)).ng);
-  vec3 sh[9];
+  SST_PRECISE vec3 sh[9];
   for (uint k = 0u; k < 9u; ++k) sh[k] = vec3(0.0f);
   for (uint c = 0u; c < 64u; ++c) {
     vec3 l = gi_rgb(GI_RADIANCE(cur * gi_tiles(GF) * 64u + tile * 64u + c));

@@ -8,9 +8,21 @@
 SST_BEGIN
 
 // ---- S19: each pixel's irradiance from up to four probes ------------------------------------------
-SST_FUNC vec3 gi_probe_irradiance(GI_CTX_PARAM uint tile, vec3 ns) {
+// The irradiance at normal ns from the probe at `seed`: from its L2 SH (the paper), or, with
+// GI10_IRRADIANCE_TEXELS, the clamped cosine integrated over its 64 texels at their centres, which
+// leaves out the SH's truncation and weight (the texels of a reprojected probe also carry its
+// parallax, which its copied SH do not).
+SST_FUNC vec3 gi_probe_irradiance(GI_CTX_PARAM uvec2 seed, vec3 ns) {
+  uint tile = gi_tile_of(GF, seed);
+  SST_PRECISE vec3 e = vec3(0.0f);
+  if ((GF.flags & GI10_IRRADIANCE_TEXELS) != 0u) {
+    GiFrame fq = gi_frame(gi_pixel(GI_CTX gi_parity(GF), gi_pixel_index(GF, seed)).ng);
+    uint base = gi_parity(GF) * gi_tiles(GF) * 64u + tile * 64u;
+    for (uint c = 0u; c < 64u; ++c)
+      e += gi_rgb(GI_RADIANCE(base + c)) * (max(dot3(gi_texel_direction(fq, c), ns), 0.0f) * (2.0f * kPi / 64.0f));
+    return e;
+  }
   uint base = gi_parity(GF) * gi_tiles(GF) * 9u + tile * 9u;
-  vec3 e = vec3(0.0f);
   for (uint k = 0u; k < 9u; ++k) e += gi_rgb(GI_SH(base + k)) * gi_sh_cosine(k, ns);
   return max3(e, vec3(0.0f));
 }
@@ -39,7 +51,7 @@ SST_FUNC void gi_stage_interpolate(GI_CTX_PARAM uint index) {
       q[2] = gi_find_probe(GI_CTX search, ivec2(0, o.y));
       q[3] = gi_find_probe(GI_CTX search, o);
       float w[4];
-      float wsum = 0.0f;
+      SST_PRECISE float wsum = 0.0f;
       float found = 0.0f;
       for (uint i = 0u; i < 4u; ++i) {
         w[i] = -1.0f;  // -1: no probe, or a duplicate of an earlier one
@@ -51,19 +63,19 @@ SST_FUNC void gi_stage_interpolate(GI_CTX_PARAM uint index) {
         w[i] = 0.0f;
         found += 1.0f;
         if (abs(dot3(pq.position - px.position, px.ng)) > cs) continue;
-        w[i] = gi_pow8(gi_saturate(1.0f - abs(pq.depth - px.depth) / px.depth) * max(dot3(px.ng, pq.ng), 0.0f));
+        SST_PRECISE float wq = gi_pow8(gi_saturate(1.0f - abs(pq.depth - px.depth) / px.depth) * max(dot3(px.ng, pq.ng), 0.0f));
+        w[i] = wq;
         wsum += w[i];
       }
       // With no probe on the pixel's surface, every found probe counts alike ("relaxed"), and the
       // denoiser is told not to trust the sample (hint 0).
       float hint = wsum > 0.0f ? 1.0f : 0.0f;
-      vec3 e = vec3(0.0f);
+      SST_PRECISE vec3 e = vec3(0.0f);
       for (uint i = 0u; i < 4u; ++i) {
         if (w[i] < 0.0f) continue;
         float wi = wsum > 0.0f ? w[i] / wsum : 1.0f / found;
         if (wi > 0.0f) {
-          uvec2 s = gi_unpack(q[i]);
-          e += wi * gi_probe_irradiance(GI_CTX gi_tile_of(GF, s), gi_ns(px));
+          e += wi * gi_probe_irradiance(GI_CTX gi_unpack(q[i]), gi_ns(px));
         }
       }
       out_value = gi_vec4(e, hint);
@@ -83,9 +95,9 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
   uint n = gi_pixels(GF);
   Gi10Pixel px = gi_pixel(GI_CTX cur, index);
   vec4 e = GI_DENOISE(index);
-  vec4 h = vec4(0.0f);
-  float delta = 0.0f;
-  float beta = 1.0f;
+  SST_PRECISE vec4 h = vec4(0.0f);
+  SST_PRECISE float delta = 0.0f;
+  SST_PRECISE float beta = 1.0f;
   uvec2 p = uvec2(index % GF.width, index / GF.width);
   if (gi_sky(px)) {
     GI_DENOISE((1u + cur) * n + index) = vec4(0.0f);
@@ -97,12 +109,12 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
   if (GF.has_history != 0u && project_to_pixel(GF.previous_view, px.position, q, distance) && q.x >= 0.0f &&
       q.y >= 0.0f && q.x < float(GF.width) && q.y < float(GF.height)) {
     vec3 v = normalize3(GF.view.eye - px.position);
-    float graze = 1.0f - max(dot3(v, gi_ns(px)), 0.0f);
-    float graze2 = graze * graze;
-    float cs = gi_cell_size(GF.view.eye, px.position, GF.k_probe) * (1.0f + 4.0f * graze2 * graze2 * graze2);
-    vec4 hs = vec4(0.0f);
-    float ds = 0.0f;
-    float ws = 0.0f;
+    SST_PRECISE float graze = 1.0f - max(dot3(v, gi_ns(px)), 0.0f);
+    SST_PRECISE float graze2 = graze * graze;
+    SST_PRECISE float cs = gi_cell_size(GF.view.eye, px.position, GF.k_probe) * (1.0f + 4.0f * graze2 * graze2 * graze2);
+    SST_PRECISE vec4 hs = vec4(0.0f);
+    SST_PRECISE float ds = 0.0f;
+    SST_PRECISE float ws = 0.0f;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         int sx = int(floor(q.x)) + dx;
@@ -113,9 +125,9 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
         if (hp.w < 1.0f) continue;
         Gi10Pixel pp = gi_pixel(GI_CTX prev, si);
         if (gi_sky(pp) || !(length3(px.position - pp.position) < cs) || !(dot3(gi_ns(px), gi_ns(pp)) > 0.95f)) continue;
-        float ddx = float(sx) + 0.5f - q.x;
-        float ddy = float(sy) + 0.5f - q.y;
-        float wt = gi_saturate(1.0f - sqrt(ddx * ddx + ddy * ddy) / 1.41421356f);
+        SST_PRECISE float ddx = float(sx) + 0.5f - q.x;
+        SST_PRECISE float ddy = float(sy) + 0.5f - q.y;
+        SST_PRECISE float wt = gi_saturate(1.0f - sqrt(ddx * ddx + ddy * ddy) / 1.41421356f);
         hs += hp * wt;
         ds += GI_AUX(prev * n + si).x * wt;
         ws += wt;
@@ -140,11 +152,11 @@ SST_FUNC void gi_stage_denoise_reproject(GI_CTX_PARAM uint index) {
   } else if (h.w < 1.0f) {
     h += gi_vec4(gi_rgb(e), -1.0f);
   }
-  float u = (float(p.x) + 0.5f) / float(GF.width);
-  float v = (float(p.y) + 0.5f) / float(GF.height);
-  float vign = sqrt(sqrt(max(15.0f * u * (1.0f - v) * v * (1.0f - u), 0.0f)));
+  SST_PRECISE float u = (float(p.x) + 0.5f) / float(GF.width);
+  SST_PRECISE float v = (float(p.y) + 0.5f) / float(GF.height);
+  SST_PRECISE float vign = sqrt(sqrt(max(15.0f * u * (1.0f - v) * v * (1.0f - u), 0.0f)));
   float count = gi_history_count(h);
-  float cap = max((4.0f + (GF.denoise_history * min(count, 8.0f) - 4.0f) * beta) * vign, 1.0f);
+  SST_PRECISE float cap = max((4.0f + (GF.denoise_history * min(count, 8.0f) - 4.0f) * beta) * vign, 1.0f);
   if (count > cap) h = h * (cap / count);
   GI_DENOISE((1u + cur) * n + index) = h;
   GI_AUX(cur * n + index) = vec4(delta, mask, mask, 0.0f);
@@ -167,8 +179,9 @@ SST_FUNC void gi_stage_blur_mask(GI_CTX_PARAM uint index) {
       int sy = py + dy;
       if (sx < 0 || sy < 0 || sx >= int(GF.width) || sy >= int(GF.height)) continue;
       float tap = GI_AUX(cur * n + uint(sy) * GF.width + uint(sx)).y;
-      float falloff = gi_saturate(1.0f - sqrt(float(dx * dx + dy * dy)) / (4.0f * 1.41421356f));
-      m = max(m, floor(tap * falloff + 0.5f));
+      SST_PRECISE float falloff = gi_saturate(1.0f - sqrt(float(dx * dx + dy * dy)) / (4.0f * 1.41421356f));
+      SST_PRECISE float rounded = floor(tap * falloff + 0.5f);
+      m = max(m, rounded);
     }
   }
   aux.z = m;
@@ -191,15 +204,15 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
   int radius = 0;
   if (m > 0.0f) {
     float work = float(GI_COUNTERS(GI10_COUNT_BLUR_WORK)) / float(n);
-    float off = max(0.5f * sqrt(max(work - 25.0f, 0.0f)) - 1.0f, 0.0f);
+    SST_PRECISE float off = max(0.5f * sqrt(max(work - 25.0f, 0.0f)) - 1.0f, 0.0f);
     radius = int(max(m - off, 1.0f) + 0.5f);
   }
   vec4 result = h;
   if (radius > 0 && !gi_sky(px)) {
     bool history = h.w > 0.0f;
     float k = history ? 200.0f : 20.0f;
-    vec3 sum = gi_history_mean(h);
-    float wsum = 1.0f;
+    SST_PRECISE vec3 sum = gi_history_mean(h);
+    SST_PRECISE float wsum = 1.0f;
     int x = int(index % GF.width);
     int y = int(index / GF.width);
     for (int r = -radius; r <= radius; ++r) {
@@ -211,7 +224,7 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
       if (!(hq.w > 0.0f)) continue;
       Gi10Pixel pq = gi_pixel(GI_CTX cur, si);
       if (gi_sky(pq)) continue;
-      float w = gi_exp2_negative(-k * abs(1.0f - px.depth / pq.depth));
+      SST_PRECISE float w = gi_exp2_negative(-k * abs(1.0f - px.depth / pq.depth));
       if (history) {
         float c = max(dot3(gi_ns(px), gi_ns(pq)), 0.0f);
         w *= (c * c) * (c * c);
@@ -219,7 +232,8 @@ SST_FUNC void gi_stage_filter_gi(GI_CTX_PARAM uint pass, uint index) {
       sum += gi_history_mean(hq) * w;
       wsum += w;
     }
-    result = gi_vec4(sum / wsum * max(abs(h.w), 1.0f), h.w);
+    SST_PRECISE vec3 scaled = sum / wsum * max(abs(h.w), 1.0f);
+    result = gi_vec4(scaled, h.w);
   }
   if (pass == 0u) {
     GI_AUX(scratch + index) = result;

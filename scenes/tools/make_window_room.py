@@ -115,7 +115,7 @@ def build(half, near_half):
     return m
 
 
-def document(mesh, half, width, height, far_albedo):
+def document(mesh, half, width, height, far_albedo, unit=1.0):
     data = b"".join(struct.pack("<3f", *p) for p in mesh.positions)
     data += b"".join(struct.pack("<3f", *n) for n in mesh.normals)
     count = len(mesh.positions)
@@ -146,12 +146,13 @@ def document(mesh, half, width, height, far_albedo):
                                                            "intensity": 5.0}]}},
         "scene": 0,
         "scenes": [{"nodes": [0, 1, 2]}],
-        "nodes": [{"mesh": 0, "name": "room"},
-                  {"camera": 0, "name": "main", "translation": list(CAMERA_EYE), "rotation": look_rotation(view)},
+        "nodes": [{"mesh": 0, "name": "room", "scale": [unit] * 3},
+                  {"camera": 0, "name": "main", "translation": [unit * e for e in CAMERA_EYE],
+                   "rotation": look_rotation(view)},
                   {"name": "sun", "extensions": {"KHR_lights_punctual": {"light": 0}},
                    "rotation": look_rotation(SUN_DIRECTION)}],
         "cameras": [{"type": "perspective", "name": "main",
-                     "perspective": {"yfov": 1.0, "aspectRatio": width / height, "znear": 0.01}}],
+                     "perspective": {"yfov": 1.0, "aspectRatio": width / height, "znear": 0.01 * unit}}],
         "meshes": [{"primitives": primitives}],
         "materials": materials,
         "buffers": [{"byteLength": len(data),
@@ -169,13 +170,16 @@ def main():
     ap.add_argument("--near-half", type=float, default=None,
                     help="ground beyond this half-size (and the hills) takes --far-albedo (default: none does)")
     ap.add_argument("--far-albedo", type=float, default=0.0, help="albedo beyond --near-half (default 0: black)")
+    ap.add_argument("--unit-scale", type=float, default=1.0,
+                    help="scene units per metre (100: the same scene in centimetres): geometry and camera scale, the "
+                         "sun's irradiance does not, so every image is the same at any scale (default 1)")
     a = ap.parse_args()
     near = a.half if a.near_half is None else a.near_half
-    if not a.half >= 3.5 or not near >= 3.5 or not a.aspect > 0.0 or not 0.0 <= a.far_albedo <= 1.0:
+    if not a.half >= 3.5 or not near >= 3.5 or not a.aspect > 0.0 or not 0.0 <= a.far_albedo <= 1.0 or not a.unit_scale > 0.0:
         ap.error("--half and --near-half must be at least 3.5 (the room's extent), --aspect positive and "
-                 "--far-albedo in [0, 1]")
+                 "--far-albedo in [0, 1], --unit-scale positive")
     with open(a.out, "w") as f:
-        json.dump(document(build(a.half, near), a.half, a.aspect, 1.0, a.far_albedo), f, separators=(",", ":"))
+        json.dump(document(build(a.half, near), a.half, a.aspect, 1.0, a.far_albedo, a.unit_scale), f, separators=(",", ":"))
 
 
 if __name__ == "__main__":

@@ -1,10 +1,9 @@
-// gi10 on lavapipe against the CPU (issue 12, acceptance 5). One frame without history is the same
-// arithmetic on both backends: the images agree to the last bits (measured: 2e-8 relative RMSE;
-// the driver may fuse a * b + c where the shared code has no `precise`). After warm-up they agree
-// only statistically: every frame's guiding picks a probe ray's texel by comparing reconstructed
-// luminances with a random threshold, so a difference in the last bit of one texel sends a ray
-// elsewhere, and the two backends' caches then hold different samples of the same distribution
-// (measured after 24 frames: 2.6% relative RMSE, means within 0.13%).
+// gi10 on lavapipe against the CPU (issue 12, acceptance 5; issue 34, acceptance 5). Every frame is
+// the same arithmetic on both backends: the shared code marks `precise` every expression a GPU
+// compiler could fuse into a multiply-add (the CPU build has no FMA), so guiding's comparisons of
+// reconstructed luminances with random thresholds, the caches and the denoiser's tests decide
+// alike, and the images stay equal after warm-up (measured: relative RMSE 0 after 24 frames on
+// Mesa 22.3 and 25.0; before those expressions were precise, 6e-3 after 16 frames).
 #include <gtest/gtest.h>
 #ifdef SST_HAVE_VULKAN
 
@@ -39,27 +38,39 @@ double mean(const Image& img) { return test::image_mean(img); }
 
 TEST(Gi10Vulkan, TheFirstFrameEqualsTheCpus) {
   if (std::string why = test::gpu_unavailable("gi10_0"); !why.empty()) GTEST_SKIP() << why;
-  nlohmann::json p = {{"cache_warmup_frames", 0}};
-  RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
-  double raw = test::relative_rmse(layer(gpu, "gi10_irradiance_raw"), layer(cpu, "gi10_irradiance_raw"));
-  double color = test::relative_rmse(gpu.frame.color, cpu.frame.color);
-  std::printf("frame 0: relative RMSE raw irradiance %.3g, image %.3g\n", raw, color);
-  EXPECT_LT(raw, 1e-3);
-  EXPECT_LT(color, 1e-3);
-  EXPECT_EQ(gpu.frame.method_counters["probe_hits"], cpu.frame.method_counters["probe_hits"]);
-  EXPECT_EQ(gpu.frame.method_counters["live_tiles"], cpu.frame.method_counters["live_tiles"]);
+  // The paper's mechanisms, then their exact forms (the bias decomposition's switches).
+  for (nlohmann::json p : {nlohmann::json{{"cache_warmup_frames", 0}},
+                           nlohmann::json{{"cache_warmup_frames", 0}, {"texel_estimate", "expected"}, {"hysteresis", false},
+                                          {"cache_lookup", false}, {"irradiance_basis", "texels"}}}) {
+    SCOPED_TRACE(p.dump());
+    RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
+    double raw = test::relative_rmse(layer(gpu, "gi10_irradiance_raw"), layer(cpu, "gi10_irradiance_raw"));
+    double color = test::relative_rmse(gpu.frame.color, cpu.frame.color);
+    std::printf("frame 0: relative RMSE raw irradiance %.3g, image %.3g\n", raw, color);
+    EXPECT_LT(raw, 1e-3);
+    EXPECT_LT(color, 1e-3);
+    EXPECT_EQ(gpu.frame.method_counters["probe_hits"], cpu.frame.method_counters["probe_hits"]);
+    EXPECT_EQ(gpu.frame.method_counters["live_tiles"], cpu.frame.method_counters["live_tiles"]);
+    EXPECT_EQ(gpu.frame.method_counters["bypass_rays"], cpu.frame.method_counters["bypass_rays"]);
+  }
 }
 
-TEST(Gi10Vulkan, AfterWarmUpAgreesWithTheCpuInDistribution) {
+TEST(Gi10Vulkan, AfterWarmUpEqualsTheCpu) {
   if (std::string why = test::gpu_unavailable("gi10_0"); !why.empty()) GTEST_SKIP() << why;
-  nlohmann::json p = {{"cache_warmup_frames", 24}};
-  RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
-  const Image &g = layer(gpu, "gi10_irradiance"), &c = layer(cpu, "gi10_irradiance");
-  double rel = test::relative_rmse(g, c);
-  double m = mean(g) / mean(c);
-  std::printf("after 24 frames: relative RMSE %.3g, mean ratio %.5f\n", rel, m);
-  EXPECT_NEAR(m, 1.0, 0.01);
-  EXPECT_LT(rel, 0.06);
+  for (nlohmann::json p : {nlohmann::json{{"cache_warmup_frames", 24}},
+                           nlohmann::json{{"cache_warmup_frames", 24}, {"preset", "capsaicin"}}}) {
+    SCOPED_TRACE(p.dump());
+    RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
+    const Image &g = layer(gpu, "gi10_irradiance"), &c = layer(cpu, "gi10_irradiance");
+    double rel = test::relative_rmse(g, c);
+    double color = test::relative_rmse(gpu.frame.color, cpu.frame.color);
+    std::printf("after 24 frames: relative RMSE irradiance %.3g, image %.3g, mean ratio %.7f\n", rel, color,
+                mean(g) / mean(c));
+    EXPECT_LT(rel, 1e-6);
+    EXPECT_LT(color, 1e-6);
+    for (const char* k : {"probe_hits", "feedback_rays", "cache_shadow_rays", "live_tiles", "patched_probes"})
+      EXPECT_EQ(gpu.frame.method_counters[k], cpu.frame.method_counters[k]) << k;
+  }
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 #include <set>
@@ -165,6 +167,77 @@ TEST(Gi10Guiding, RaysPerTexelFollowTheReconstructedLuminanceTimesCosine) {
   }
   // 51 degrees of freedom: the 0.999 quantile is 90.6.
   EXPECT_LT(chi2, 90.6) << "dof " << dof;
+  // The expected rays per texel that texel_estimate expected divides by: the same distribution,
+  // summing to the 64 rays.
+  double expected_sum = 0.0;
+  for (uint32_t c = 0; c < 64; ++c) {
+    EXPECT_NEAR(rays[c].expected, 64.0 * weight[c] / total, 1e-4) << "texel " << c;
+    expected_sum += rays[c].expected;
+  }
+  EXPECT_NEAR(expected_sum, 64.0, 1e-3);
+}
+
+TEST(Gi10Guiding, ExpectedTexelsAreUnbiasedWhereTheFillIsNot) {
+  // A probe's texel radiance under guiding, averaged over many frames of draws: a texel guiding
+  // rarely samples is filled with the mean of the reached ones by the paper's estimate (too
+  // bright), while the sum over the expected ray count (texel_estimate expected) averages to the
+  // true radiance. True radiance: texel c holds 1 + (c % 5); the guide reconstructs 0.25 + c % 5
+  // (wrong, as history is), hysteresis off so each frame stands alone.
+  const uint32_t w = 8, h = 8;
+  glsl::Gi10Frame f{};
+  f.width = w;
+  f.height = h;
+  f.tiles_x = f.tiles_y = 1;
+  f.spawn_x = f.spawn_y = 1;
+  f.mask_levels = 1;
+  f.k_probe = 1.0f;
+  f.view.eye = vec3(0, 5, 0);
+  std::vector<glsl::Gi10Pixel> pixels(2 * w * h);
+  for (uint32_t i = 0; i < 2 * w * h; ++i) {
+    pixels[i].position = vec3(float(i % w) * 0.01f, 0.0f, float((i / w) % h) * 0.01f);
+    pixels[i].depth = 5.0f;
+    pixels[i].ng = vec3(0, 1, 0);
+  }
+  std::vector<uint32_t> mask(2, kGiNoProbe), spawn(8, 0u);
+  mask[0] = mask[1] = gi_pack(uvec2(3, 3));
+  spawn[0] = gi_pack(uvec2(3, 3));
+  std::vector<glsl::Gi10Ray> rays(64);
+  Gi10Buffers b;
+  b.frame = &f;
+  b.pixels = pixels.data();
+  b.mask = mask.data();
+  b.spawn = spawn.data();
+  b.rays = rays.data();
+  auto mean_texels = [&](uint32_t flags) {
+    f.flags = GI10_GUIDING | GI10_BACKUP_MEAN | flags;
+    std::vector<vec4> radiance(2 * 64);
+    b.radiance = radiance.data();
+    std::vector<double> mean(64, 0.0);
+    const int frames = 4000;
+    for (int frame = 0; frame < frames; ++frame) {
+      f.frame = 2 * uint32_t(frame);
+      for (uint32_t c = 0; c < 64; ++c) radiance[c] = vec4(vec3(0.25f + float(c % 5)), kGiMissDistance);
+      gi_stage_sample(b, 0);
+      for (uint32_t c = 0; c < 64; ++c) rays[c].radiance = vec3(1.0f + float(rays[c].texel % 5));
+      gi_stage_blend(b, 0);
+      for (uint32_t c = 0; c < 64; ++c) mean[c] += double(radiance[c].x) / frames;
+    }
+    return mean;
+  };
+  std::vector<double> fill = mean_texels(0u), expected = mean_texels(GI10_TEXEL_EXPECTED);
+  double worst_z = 0.0, fill_dim = 0.0;
+  for (uint32_t c = 0; c < 64; ++c) {
+    double truth = 1.0 + double(c % 5);
+    // The estimate is truth k / n with k the rays landing (mean n, variance at most n): its mean
+    // over the frames has a standard deviation of at most truth / sqrt(n frames).
+    double n = rays[c].expected;
+    ASSERT_GT(n, 0.0) << "texel " << c;
+    worst_z = std::max(worst_z, std::abs(expected[c] - truth) / (truth / std::sqrt(n * 4000.0)));
+    if (c % 5 == 0) fill_dim += fill[c] / truth / 13.0;  // the 13 texels the guide predicts dim
+  }
+  std::printf("expected texels: worst z %.2f; fill: dim texels %.2f x their radiance\n", worst_z, fill_dim);
+  EXPECT_LT(worst_z, 4.5);  // 64 texels: 4.5 standard deviations is a 4e-4 chance by noise
+  EXPECT_GT(fill_dim, 1.5);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include "core/gi10/gi10_math.h"
+#include "core/restir/restir_layout.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/path_trace_pass.h"
 
@@ -12,7 +13,8 @@ namespace {
 
 enum Buffer : size_t {
   kFrame, kPixels, kEmission, kMask, kRadiance, kSh, kSpawn, kRays, kHash, kValues, kAccum,
-  kDenoise, kAux, kFeedback, kCounters, kOutput, kBufferCount
+  kDenoise, kAux, kFeedback, kCounters, kOutput, kRayReservoirs, kSlotReservoirs, kSlotSurfaces, kSlotKeys,
+  kBufferCount
 };
 
 }  // namespace
@@ -44,15 +46,20 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   const VulkanContext& vk = gpu_->vulkan();
   sizes_ = s;
   uint64_t px = s.pixels(), nt = s.tiles(), ns = s.spawns(), t = s.hash_tiles;
+  // world_restir's buffers: one element each when it is off.
+  uint64_t rt = std::max<uint64_t>(s.reservoir_slots, 1), rr = s.reservoir_slots > 0 ? ns * 64 : 1;
   const std::pair<uint64_t, size_t> shapes[kBufferCount] = {
       {1, sizeof(glsl::Gi10Frame)}, {2 * px, sizeof(glsl::Gi10Pixel)}, {px, 16},  {2 * uint64_t(s.mask_total), 4},
       {2 * nt * 64, 16},            {2 * nt * 9, 16},                 {s.spawn_words(), 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
       {2 * t, 4},                   {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
-      {3 * px, 16},                 {px, 16},                         {GI10_COUNTERS, 4}, {px, 16}};
+      {3 * px, 16},                 {px, 16},                         {GI10_COUNTERS, 4}, {px, 16},
+      {rr, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirSurface)}, {3 * rt, 4}};
   const char* names[kBufferCount] = {"gi10 frame", "gi10 pixels", "gi10 emission", "gi10 probe mask",
                                      "gi10 probe radiance", "gi10 probe SH", "gi10 spawn lists", "gi10 probe rays",
                                      "gi10 hash", "gi10 cache values", "gi10 cache accumulators", "gi10 denoiser",
-                                     "gi10 denoiser aux", "gi10 feedback", "gi10 counters", "gi10 irradiance"};
+                                     "gi10 denoiser aux", "gi10 feedback", "gi10 counters", "gi10 irradiance",
+                                     "gi10 ray reservoirs", "gi10 reservoir slots", "gi10 reservoir points",
+                                     "gi10 reservoir keys"};
   buffers_.clear();
   for (size_t b = 0; b < kBufferCount; ++b) {
     buffers_.push_back(make_buffer(vk, size_t(shapes[b].first), shapes[b].second, names[b]));

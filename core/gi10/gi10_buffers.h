@@ -11,7 +11,7 @@
 //   GI_CTX_PARAM / GI_CTX   the buffers' context parameter and argument (empty in GLSL)
 //   GF                      the frame's Gi10Frame
 //   GI_PIXELS(i) ... GI_OUTPUT(i)     the buffers listed below, as lvalues
-//   GI_ATOMIC_ADD(lvalue, v), GI_ATOMIC_CAS(lvalue, compare, v)   return the old value
+//   GI_ATOMIC_ADD(lvalue, v), GI_ATOMIC_CAS(lvalue, compare, v), GI_ATOMIC_MIN(lvalue, v)   return the old value
 //
 // Buffer layout (element type, count): PIXELS Gi10Pixel 2 W H (this frame's and the previous, by
 // frame parity); EMISSION vec4 W H (emission seen at the pixel centres); MASK uint 2 M (M: all
@@ -19,12 +19,18 @@
 // gi_spawn_words (spawn list and the patch's lists); RAYS Gi10Ray Ns 64; HASH uint 2 T (checksums,
 // then last-touch frames); VALUES vec4 T 85; ACCUM uint T 64 kGiAccumWords; DENOISE vec4 3 W H
 // (irradiance + hint, history x2); AUX vec4 3 W H (colour delta and blur masks x2, filter
-// scratch); FEEDBACK vec4 W H; COUNTERS uint GI10_COUNTERS; OUTPUT vec4 W H (E_out). No buffer
+// scratch); FEEDBACK vec4 W H; COUNTERS uint GI10_COUNTERS; OUTPUT vec4 W H (E_out); and, with
+// world_restir (else one element each), RAY_RESERVOIRS RestirReservoir Ns 64 (each ray's),
+// SLOT_RESERVOIRS RestirReservoir 2 T and SLOT_SURFACES RestirSurface 2 T (a reservoir slot's
+// stored reservoir and the cache point it belongs to, by frame parity; T slots, as many as hash
+// tiles), SLOT_KEYS uint 3 T (the frame's winning ray key per slot, then the frame + 2 at which
+// each parity's entry was written). No buffer
 // exceeds lavapipe's 128 MiB at 1920 x 1080 with the default cache.
 #ifndef SST_CORE_GI10_GI10_BUFFERS_H
 #define SST_CORE_GI10_GI10_BUFFERS_H
 #include "core/gi10/gi10_layout.h"
 #include "core/gi10/gi10_math.h"
+#include "core/restir/restir_layout.h"
 #include "core/rng/hash_rng.h"
 
 #ifdef __cplusplus

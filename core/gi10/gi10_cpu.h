@@ -6,6 +6,7 @@
 #include "core/accel/embree_accel.h"
 #include "core/gi10/gi10_layout.h"
 #include "core/lights/light_sampler.h"
+#include "core/restir/restir_layout.h"
 #include "core/shading/surface.h"
 
 namespace sst {
@@ -28,11 +29,22 @@ struct Gi10Buffers {
   vec4* feedback = nullptr;
   uint32_t* counters = nullptr;
   vec4* output = nullptr;
+  RestirReservoir* ray_reservoirs = nullptr;
+  RestirReservoir* slot_reservoirs = nullptr;
+  RestirSurface* slot_surfaces = nullptr;
+  uint32_t* slot_keys = nullptr;
 };
 
 inline uint32_t gi_atomic_cas(uint32_t& target, uint32_t compare, uint32_t value) {
   __atomic_compare_exchange_n(&target, &compare, value, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED);
   return compare;  // the value found, as GLSL's atomicCompSwap returns
+}
+
+inline uint32_t gi_atomic_min(uint32_t& target, uint32_t value) {
+  uint32_t seen = __atomic_load_n(&target, __ATOMIC_RELAXED);
+  while (value < seen && !__atomic_compare_exchange_n(&target, &seen, value, true, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) {
+  }
+  return seen;  // the value found, as GLSL's atomicMin returns
 }
 
 }  // namespace sst
@@ -55,6 +67,11 @@ inline uint32_t gi_atomic_cas(uint32_t& target, uint32_t compare, uint32_t value
 #define GI_FEEDBACK(i) gi.feedback[i]
 #define GI_COUNTERS(i) gi.counters[i]
 #define GI_OUTPUT(i) gi.output[i]
+#define GI_RAY_RESERVOIRS(i) gi.ray_reservoirs[i]
+#define GI_SLOT_RESERVOIRS(i) gi.slot_reservoirs[i]
+#define GI_SLOT_SURFACES(i) gi.slot_surfaces[i]
+#define GI_SLOT_KEYS(i) gi.slot_keys[i]
 #define GI_ATOMIC_ADD(ref, v) __atomic_fetch_add(&(ref), (v), __ATOMIC_RELAXED)
 #define GI_ATOMIC_CAS(ref, compare, v) ::sst::gi_atomic_cas(ref, compare, v)
+#define GI_ATOMIC_MIN(ref, v) ::sst::gi_atomic_min(ref, v)
 #include "core/gi10/gi10_stages.h"

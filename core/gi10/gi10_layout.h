@@ -26,6 +26,8 @@ using glm::vec4;
 #define GI10_TEXEL_EXPECTED 1024u   // a texel's rays summed over the rays expected there, not averaged (no fill)
 #define GI10_CACHE_LOOKUP 2048u     // probe rays read their cell's average; else each keeps its own sample
 #define GI10_IRRADIANCE_TEXELS 4096u  // S19 integrates the probes' texels, not their L2 SH
+#define GI10_WORLD_RESTIR 8192u     // cache points sample light by RIS with world-space temporal reuse
+#define GI10_WORLD_RESTIR_UNBIASED 16384u  // ... merging with the shadow ray that keeps it unbiased
 
 // Stage numbers of the one GPU entry point (gpu/shaders/gi10.comp), in execution order.
 #define GI10_STAGE_GBUFFER 0u
@@ -52,7 +54,8 @@ using glm::vec4;
 #define GI10_STAGE_LIST_SCAN 21u
 #define GI10_STAGE_LIST_COMPACT 22u
 #define GI10_STAGE_PATCH 23u
-#define GI10_STAGES 24u
+#define GI10_STAGE_STORE_RESERVOIR 24u
+#define GI10_STAGES 25u
 
 // Counters (Gi10 counters buffer, uint each).
 #define GI10_COUNT_PROBES 0u          // spawned probes traced
@@ -69,6 +72,7 @@ using glm::vec4;
 #define GI10_COUNT_EVICTED 11u
 #define GI10_COUNT_LIVE_TILES 12u
 #define GI10_COUNT_BLUR_WORK 13u      // S = sum over pixels of (2 m + 1)^2 (the denoiser's blur radius)
+#define GI10_COUNT_RESERVOIRS_REUSED 14u  // world_restir: cache points that merged the previous frame's reservoir
 #define GI10_COUNTERS 16u
 
 // Everything the stages read that is not a buffer. The host fills it once per frame.
@@ -105,10 +109,10 @@ struct Gi10Frame {
   float filter_angle;        // cos of the probe filter's parallax threshold (cos(0.02 pi))
   float interpolation_jitter;  // pixels (16)
   float denoise_history;     // the denoiser's history cap factor (8: cap = lerp(4, 8 min(n, 8), beta) vign)
+  uint restir_candidates;    // world-space ReSTIR: light samples per cache point (8)
+  float restir_cap;          // its history's M cap, in multiples of the new reservoir's (20)
   uint pad0;
   uint pad1;
-  uint pad2;
-  uint pad3;
 };
 
 // The G-buffer of a pixel centre: the first hit of the ray through the centre.
@@ -127,6 +131,7 @@ struct Gi10Pixel {
 #define GI10_RAY_SHADOW 16u    // it traced a shadow ray from its hit
 #define GI10_RAY_BYPASS 32u    // shorter than a cell: keeps its own sample
 #define GI10_RAY_EMISSIVE 64u  // it hit an emitter and returns the emission
+#define GI10_RAY_RESERVOIR 128u  // its light sample is a world-space ReSTIR reservoir (RAY_RESERVOIRS)
 
 // One probe ray: the direction chosen by the sample stage, its probe's reconstructed texel (for
 // the hysteresis), the secondary vertex and the radiance it brings back. The record of lane c also
@@ -146,6 +151,8 @@ struct Gi10Ray {
   float cell_size;       // edge of its cache cell (the bypass test)
   vec3 radiance;         // what the ray brings back to its probe
   float expected;        // how many of its probe's 64 rays are expected to land in texel <its lane>
+  vec3 lift;             // Surface::lift at x2 (shadow rays from it)
+  float offset;          // Surface::offset at x2
 };
 
 // Push constants of gpu/shaders/gi10.comp: which stage, and its pass (filter direction, mip).

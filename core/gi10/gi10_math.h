@@ -17,6 +17,9 @@ SST_CONSTANT uint kGiSpawnTile = 16u;    // pixels per spawn-tile side: 1/4 ray 
 SST_CONSTANT uint kGiNoProbe = 0xFFFFFFFFu;
 SST_CONSTANT uint kGiCellsPerTile = 85u;  // 8x8 + 4x4 + 2x2 + 1 cells of one hash tile's mips
 SST_CONSTANT float kGiMissDistance = 1e9f;
+// texel_estimate expected: the uniform part of guiding's distribution, as a fraction of its mean
+// weight (the guided share stays 1 / (1 + kGiGuideFloor) = 80% of the rays).
+SST_CONSTANT float kGiGuideFloor = 0.25f;
 SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 SST_CONSTANT uint kGiBlock = 256u;     // elements per block of the spawn stage's list compaction
 

@@ -17,7 +17,7 @@ namespace sst {
 
 static_assert(sizeof(glsl::Gi10Frame) == 304, "Gi10Frame must match its std430 layout");
 static_assert(sizeof(glsl::Gi10Pixel) == 32, "Gi10Pixel must match its std430 layout");
-static_assert(sizeof(glsl::Gi10Ray) == 112, "Gi10Ray must match its std430 layout");
+static_assert(sizeof(glsl::Gi10Ray) == 128, "Gi10Ray must match its std430 layout");
 
 namespace {
 
@@ -25,7 +25,8 @@ const char* kStageNames[] = {"gbuffer", "purge",  "reproject", "spawn",       "s
                              "shade",   "update", "resolve",   "blend",       "mask_mip",    "filter",
                              "project", "interpolate", "denoise_reproject", "blur_mask", "filter_gi",
                              "copy_probes", "feedback", "empty_tiles", "list_count", "list_scan",
-                             "list_compact", "patch"};
+                             "list_compact", "patch", "store_reservoir"};
+static_assert(sizeof(kStageNames) / sizeof(kStageNames[0]) == GI10_STAGES);
 
 // The paper's three timing buckets (docs/design/gi10.md, the record); the G-buffer, feedback
 // image and direct pass apart.
@@ -33,6 +34,7 @@ const char* bucket_of(uint32_t stage) {
   switch (stage) {
     case GI10_STAGE_TRACE:
     case GI10_STAGE_SHADE: return "ray_tracing";
+    case GI10_STAGE_STORE_RESERVOIR: return "caching_sampling";
     case GI10_STAGE_PROJECT:
     case GI10_STAGE_INTERPOLATE:
     case GI10_STAGE_DENOISE_REPROJECT:
@@ -72,6 +74,11 @@ class Gi10Cpu final : public Gi10Executor {
     feedback_.assign(px, vec4(0.0f));
     counters_.assign(GI10_COUNTERS, 0u);
     output_.assign(px, vec4(0.0f));
+    uint64_t rt = std::max<uint64_t>(s.reservoir_slots, 1), rr = s.reservoir_slots > 0 ? ns * 64 : 1;
+    ray_reservoirs_.assign(rr, RestirReservoir{});
+    slot_reservoirs_.assign(2 * rt, RestirReservoir{});
+    slot_surfaces_.assign(2 * rt, RestirSurface{});
+    slot_keys_.assign(3 * rt, 0u);
     b_.frame = &frame_;
     b_.pixels = pixels_.data();
     b_.mask = mask_.data();
@@ -88,6 +95,10 @@ class Gi10Cpu final : public Gi10Executor {
     b_.feedback = feedback_.data();
     b_.counters = counters_.data();
     b_.output = output_.data();
+    b_.ray_reservoirs = ray_reservoirs_.data();
+    b_.slot_reservoirs = slot_reservoirs_.data();
+    b_.slot_surfaces = slot_surfaces_.data();
+    b_.slot_keys = slot_keys_.data();
   }
   void begin_frame(const RenderContext& context, const glsl::Gi10Frame& frame) override {
     context_ = &context;
@@ -132,6 +143,9 @@ class Gi10Cpu final : public Gi10Executor {
   std::vector<uint32_t> mask_, spawn_, hash_, accum_, counters_;
   std::vector<vec4> radiance_, sh_, values_, emission_, denoise_, aux_, feedback_, output_;
   std::vector<glsl::Gi10Ray> rays_;
+  std::vector<RestirReservoir> ray_reservoirs_, slot_reservoirs_;
+  std::vector<RestirSurface> slot_surfaces_;
+  std::vector<uint32_t> slot_keys_;
   Gi10Buffers b_;
 };
 
@@ -173,6 +187,11 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   if (choice("texel_estimate", p.texel_estimate, {"fill", "expected"}) == "expected") r.flags |= GI10_TEXEL_EXPECTED;
   if (p.cache_lookup) r.flags |= GI10_CACHE_LOOKUP;
   if (choice("irradiance_basis", p.irradiance_basis, {"sh", "texels"}) == "texels") r.flags |= GI10_IRRADIANCE_TEXELS;
+  if (p.world_restir) r.flags |= GI10_WORLD_RESTIR;
+  if (choice("world_restir_combine", p.world_restir_combine, {"unbiased", "biased"}) == "unbiased")
+    r.flags |= GI10_WORLD_RESTIR_UNBIASED;
+  if (p.world_restir_candidates < 1 || p.world_restir_candidates > 64)
+    throw Error("gi10 parameter world_restir_candidates must be in 1..64");
   auto positive = [](const char* name, double v) {
     if (!(v > 0.0)) throw Error(std::string("gi10 parameter ") + name + " must be > 0 (got " + std::to_string(v) + ")");
   };
@@ -219,6 +238,7 @@ Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params) {
     s.mask_total += size.x * size.y;
   }
   s.hash_tiles = (1u << params.hash_buckets_log2) << params.tiles_per_bucket_log2;
+  s.reservoir_slots = params.world_restir ? s.hash_tiles : 0u;
   return s;
 }
 
@@ -286,6 +306,8 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   f.filter_angle = float(std::cos(M_PI * double(params_.filter_angle)));
   f.interpolation_jitter = params_.interpolation_jitter;
   f.denoise_history = params_.denoise_history;
+  f.restir_candidates = uint32_t(params_.world_restir_candidates);
+  f.restir_cap = params_.world_restir_cap;
   executor.begin_frame(context, f);
   executor.clear_counters();
 
@@ -331,6 +353,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   run(GI10_STAGE_SAMPLE, 0, sizes_.spawns());
   run(GI10_STAGE_TRACE, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_SHADE, 0, sizes_.spawns() * 64);
+  if (params_.world_restir) run(GI10_STAGE_STORE_RESERVOIR, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_UPDATE, 0, sizes_.hash_tiles);
   run(GI10_STAGE_RESOLVE, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_BLEND, 0, sizes_.spawns());
@@ -399,6 +422,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
                              {"feedback_rays", c[GI10_COUNT_FEEDBACK]},
                              {"cache_shadow_rays", c[GI10_COUNT_SHADOW_RAYS]},
                              {"bypass_rays", c[GI10_COUNT_BYPASS]},
+                             {"reservoirs_reused", c[GI10_COUNT_RESERVOIRS_REUSED]},
                              {"emissive_rays", c[GI10_COUNT_EMISSIVE]},
                              {"probe_rays_per_pixel", double(c[GI10_COUNT_PROBES]) * 64.0 / pixels},
                              {"cache_shadow_rays_per_pixel", double(c[GI10_COUNT_SHADOW_RAYS]) / pixels},

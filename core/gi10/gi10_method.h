@@ -22,6 +22,7 @@ struct Gi10Sizes {
   uint32_t tiles_x = 0, tiles_y = 0, spawn_x = 0, spawn_y = 0;
   uint32_t mask_levels = 0, mask_total = 0;  // mips of the probe mask and their elements (one copy)
   uint32_t hash_tiles = 0;
+  uint32_t reservoir_slots = 0;  // world-space ReSTIR's reservoir slots (0: world_restir off)
   uint64_t pixels() const { return uint64_t(width) * height; }
   uint64_t tiles() const { return uint64_t(tiles_x) * tiles_y; }
   uint64_t spawns() const { return uint64_t(spawn_x) * spawn_y; }

@@ -40,6 +40,10 @@ struct Gi10Params {
   std::string texel_estimate = "fill";
   bool cache_lookup = true;
   std::string irradiance_basis = "sh";
+  bool world_restir = false;
+  int world_restir_candidates = 8;
+  float world_restir_cap = 20.0f;
+  std::string world_restir_combine = "unbiased";
 
   template <class V>
   void visit(V&& v) {
@@ -95,6 +99,14 @@ struct Gi10Params {
       "light sample or feedback value (the cache still fills), the cache's exact form");
     v("irradiance_basis", irradiance_basis, "sh|texels: a pixel's irradiance from its probes' L2 SH (the paper) or "
       "from the cosine integrated over their 64 texels (no SH truncation)");
+    v("world_restir", world_restir, "world-space ReSTIR for the light at cache points (paper 2.3.1; off in Capsaicin's "
+      "defaults): RIS over world_restir_candidates light samples, merged with the reservoir the previous frame left in the "
+      "point's hash tile; off: one light sample");
+    v("world_restir_candidates", world_restir_candidates, "world_restir: light samples per cache point (Capsaicin 8)");
+    v("world_restir_cap", world_restir_cap, "world_restir: the previous reservoir's M is capped at this many times the "
+      "new one's (Capsaicin 20)");
+    v("world_restir_combine", world_restir_combine, "world_restir: unbiased (the previous sample's weight checked with "
+      "a shadow ray, as ReSTIR DI's restir_combine) or biased (without; Capsaicin merges without it)");
   }
 };
 

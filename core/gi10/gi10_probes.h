@@ -325,12 +325,21 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
     }
   }
   // The guiding distribution: reconstructed luminance times the cosine at each texel's centre.
+  // texel_estimate expected mixes in a uniform floor (kGiGuideFloor of the mean weight), so every
+  // texel keeps a chance: a texel guiding can never reach would keep a dark estimate for ever.
   float cdf[65];
   cdf[0] = 0.0f;
   for (uint c = 0u; c < 64u; ++c) {
     float w = 0.0f;
     if (a.count[c] > 0.0f) w = max(luminance(gi_rgb(a.sum[c])) / a.count[c], 0.0f) * gi_texel_local_direction(c, vec2(0.5f, 0.5f)).z;
     cdf[c + 1u] = cdf[c] + w;
+  }
+  if ((GF.flags & GI10_TEXEL_EXPECTED) != 0u) {
+    SST_PRECISE float floor_weight = cdf[64] * (kGiGuideFloor / 64.0f);
+    for (uint c = 1u; c <= 64u; ++c) {
+      SST_PRECISE float raised = cdf[c] + floor_weight * float(c);
+      cdf[c] = raised;
+    }
   }
   float total = cdf[64];
   bool guided_run = (GF.flags & GI10_GUIDING) != 0u && total > 0.0f;

@@ -24,6 +24,7 @@ SST_FUNC void gi10_stage(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PA
   else if (stage == GI10_STAGE_SAMPLE) gi_stage_sample(GI_CTX index);
   else if (stage == GI10_STAGE_TRACE) gi_stage_trace(SCENE_CTX RAY_CTX GI_CTX index);
   else if (stage == GI10_STAGE_SHADE) gi_stage_shade(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index);
+  else if (stage == GI10_STAGE_STORE_RESERVOIR) gi_stage_store_reservoir(GI_CTX index);
   else if (stage == GI10_STAGE_UPDATE) gi_stage_update(GI_CTX index);
   else if (stage == GI10_STAGE_RESOLVE) gi_stage_resolve(GI_CTX index);
   else if (stage == GI10_STAGE_BLEND) gi_stage_blend(GI_CTX index);

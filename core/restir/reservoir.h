@@ -6,7 +6,8 @@
 // already holds its candidate's share (RIS with MIS weights), else the number of candidates that
 // could have produced y (merging reservoirs, where each candidate is a reservoir of M samples).
 // Every reservoir in sst is built from these two functions: ReSTIR DI's light samples
-// (core/restir/restir_di_stages.h).
+// (core/restir/restir_di_stages.h), ReSTIR GI's vertices and GI-1.0's world-space reservoirs
+// (core/gi10/gi10_cache.h).
 #ifndef SST_CORE_RESTIR_RESERVOIR_H
 #define SST_CORE_RESTIR_RESERVOIR_H
 #include "core/math/vector_math.h"

@@ -25,6 +25,7 @@ struct RestirFrame {
 #define RESTIR_RESERVOIR(i) restir.reservoirs[i]
 #define RESTIR_HISTORY_SURFACE(i) restir.history.surfaces[i]
 #define RESTIR_HISTORY_RESERVOIR(i) restir.history.reservoirs[i]
+#include "core/restir/restir_stages.h"
 #include "core/restir/restir_di_stages.h"
 #include "core/restir/restir_gi_stages.h"
 

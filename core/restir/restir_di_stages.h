@@ -4,7 +4,7 @@
 // visibility reuse (the kept sample's shadow ray; W = 0 when occluded).
 #ifndef SST_CORE_RESTIR_RESTIR_DI_STAGES_H
 #define SST_CORE_RESTIR_RESTIR_DI_STAGES_H
-#include "core/restir/restir_stages.h"
+#include "core/restir/restir_resampling.h"
 
 SST_BEGIN
 

@@ -7,7 +7,7 @@
 #ifndef SST_CORE_RESTIR_RESTIR_GI_STAGES_H
 #define SST_CORE_RESTIR_RESTIR_GI_STAGES_H
 #include "core/pt/trace_path.h"
-#include "core/restir/restir_stages.h"
+#include "core/restir/restir_resampling.h"
 
 SST_BEGIN
 

@@ -1,18 +1,20 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // rayquery build (gpu/CMakeLists.txt)
-// variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23
+// variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24
 // GI-1.0 on the GPU: the stages of core/gi10/gi10_stages.h, one invocation per element, as the
 // CPU's loops run them. Compiled once per stage (gi10_<GI10_STAGE_*>, gpu/CMakeLists.txt): in one
 // pipeline for all, llvmpipe paid every stage's local arrays in each invocation (7 us each).
 // Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
 // (LIGHT_BUFFERS), 13 the frame's Gi10Frame, 14..28 GI-1.0's buffers in the order of
 // gpu/gi10_vulkan.cpp (pixels, emission, mask, radiance, sh, spawn, rays, hash, values, accum,
-// denoise, aux, feedback, counters, output). Push constants: Gi10Push.
+// denoise, aux, feedback, counters, output, ray reservoirs, tile reservoirs, tile surfaces, tile
+// keys). Push constants: Gi10Push.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
 #include "core/gi10/gi10_layout.h"
+#include "core/restir/restir_layout.h"
 SCENE_BUFFERS(0)
 #include "gpu/shaders/scene_accel.glsl"
 LIGHT_BUFFERS(7)
@@ -32,6 +34,10 @@ layout(std430, binding = 25) buffer Aux { vec4 gi_aux_buffer[]; };
 layout(std430, binding = 26) buffer Feedback { vec4 gi_feedback_buffer[]; };
 layout(std430, binding = 27) buffer Counters { uint gi_counters_buffer[]; };
 layout(std430, binding = 28) buffer Output { vec4 gi_output_buffer[]; };
+layout(std430, binding = 29) buffer RayReservoirs { RestirReservoir gi_ray_reservoirs_buffer[]; };
+layout(std430, binding = 30) buffer SlotReservoirs { RestirReservoir gi_slot_reservoirs_buffer[]; };
+layout(std430, binding = 31) buffer SlotSurfaces { RestirSurface gi_slot_surfaces_buffer[]; };
+layout(std430, binding = 32) buffer SlotKeys { uint gi_slot_keys_buffer[]; };
 layout(push_constant) uniform Push { Gi10Push push; };
 #define SCENE_RAY_EPSILON gi_frame_constants.scene_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
@@ -58,8 +64,13 @@ layout(push_constant) uniform Push { Gi10Push push; };
 #define GI_FEEDBACK(i) gi_feedback_buffer[i]
 #define GI_COUNTERS(i) gi_counters_buffer[i]
 #define GI_OUTPUT(i) gi_output_buffer[i]
+#define GI_RAY_RESERVOIRS(i) gi_ray_reservoirs_buffer[i]
+#define GI_SLOT_RESERVOIRS(i) gi_slot_reservoirs_buffer[i]
+#define GI_SLOT_SURFACES(i) gi_slot_surfaces_buffer[i]
+#define GI_SLOT_KEYS(i) gi_slot_keys_buffer[i]
 #define GI_ATOMIC_ADD(ref, v) atomicAdd(ref, v)
 #define GI_ATOMIC_CAS(ref, compare, v) atomicCompSwap(ref, compare, v)
+#define GI_ATOMIC_MIN(ref, v) atomicMin(ref, v)
 #include "core/gi10/gi10_stages.h"
 
 layout(local_size_x = 64) in;

@@ -39,6 +39,7 @@ layout(push_constant) uniform Push { RestirPush push; };
 #define RESTIR_RESERVOIR(i) reservoirs_in[i]
 #define RESTIR_HISTORY_SURFACE(i) history_surfaces[i]
 #define RESTIR_HISTORY_RESERVOIR(i) history_reservoirs[i]
+#include "core/restir/restir_stages.h"
 #include "core/restir/restir_di_stages.h"
 #include "core/restir/restir_gi_stages.h"
 

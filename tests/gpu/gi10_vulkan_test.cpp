@@ -58,7 +58,8 @@ TEST(Gi10Vulkan, TheFirstFrameEqualsTheCpus) {
 TEST(Gi10Vulkan, AfterWarmUpEqualsTheCpu) {
   if (std::string why = test::gpu_unavailable("gi10_0"); !why.empty()) GTEST_SKIP() << why;
   for (nlohmann::json p : {nlohmann::json{{"cache_warmup_frames", 24}},
-                           nlohmann::json{{"cache_warmup_frames", 24}, {"preset", "capsaicin"}}}) {
+                           nlohmann::json{{"cache_warmup_frames", 24}, {"preset", "capsaicin"}},
+                           nlohmann::json{{"cache_warmup_frames", 24}, {"world_restir", true}}}) {
     SCOPED_TRACE(p.dump());
     RenderResult gpu = render_on("vulkan", p), cpu = render_on("cpu", p);
     const Image &g = layer(gpu, "gi10_irradiance"), &c = layer(cpu, "gi10_irradiance");
@@ -68,7 +69,8 @@ TEST(Gi10Vulkan, AfterWarmUpEqualsTheCpu) {
                 mean(g) / mean(c));
     EXPECT_LT(rel, 1e-6);
     EXPECT_LT(color, 1e-6);
-    for (const char* k : {"probe_hits", "feedback_rays", "cache_shadow_rays", "live_tiles", "patched_probes"})
+    for (const char* k : {"probe_hits", "feedback_rays", "cache_shadow_rays", "live_tiles", "patched_probes",
+                          "reservoirs_reused"})
       EXPECT_EQ(gpu.frame.method_counters[k], cpu.frame.method_counters[k]) << k;
   }
 }

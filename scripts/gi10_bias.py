@@ -5,8 +5,10 @@ The references are single images (direct + indirect). Each run's EXR has the lay
 direct pass, unbiased) and `indirect` (GI-1.0's estimate), so the reference's indirect mean is
 mean(reference) - mean(run.direct), and the bias of the indirect light is
 mean(run.indirect) / that - 1 per channel (the direct pass's noise moves the image mean by < 0.3%
-at 1 spp over these images). Prints one row per point of the axes, seeds pooled (mean, and the
-standard deviation over seeds): image RMSE, SSIM and the indirect bias (R, G, B).
+at 1 spp over these images). Prints one row per point of the axes and variant, seeds pooled (mean,
+and the standard deviation over seeds): image RMSE, SSIM, the image mean's bias (mean(run) /
+mean(reference) - 1 over the three channels' sum), the share of probe hits that took the feedback
+image, and the indirect bias (R, G, B).
 Usage: scripts/gi10_bias.py results/gi10-static [--markdown]
 """
 import json
@@ -39,11 +41,14 @@ def main():
         key = (rec["scene"],) + tuple(sorted((k, str(v)) for k, v in rec["axes"].items()))
         if rec.get("variant"):
             key += (("variant", rec["variant"]),)
-        groups.setdefault(key, []).append((rec["metrics"]["rmse"], rec["metrics"]["ssim"], bias))
+        image = sum(rec["metrics"]["mean_test"]) / sum(ref) - 1.0
+        mc = rec["counters"].get("method", {})
+        feedback = mc.get("feedback_rays", 0) / mc["probe_hits"] if mc.get("probe_hits") else float("nan")
+        groups.setdefault(key, []).append((rec["metrics"]["rmse"], rec["metrics"]["ssim"], bias, image, feedback))
     axes = [k for k, _ in next(iter(groups))[1:]] if groups else []
     if markdown:
-        print("| scene | " + " | ".join(axes) + " | seeds | RMSE | SSIM | indirect bias R | G | B |")
-        print("|---|" + "---|" * len(axes) + "---|---|---|---|---|---|")
+        print("| scene | " + " | ".join(axes) + " | seeds | RMSE | SSIM | image bias | feedback share | indirect bias R | G | B |")
+        print("|---|" + "---|" * len(axes) + "---|---|---|---|---|---|---|---|")
     for key, rows in groups.items():
         n = len(rows)
         mean = lambda xs: sum(xs) / len(xs)
@@ -55,11 +60,15 @@ def main():
             b = [r[2][c] for r in rows]
             cells.append("%+.1f%% (sd %.1f)" % (100 * mean(b), 100 * sd(b)) if n > 1 else "%+.1f%%" % (100 * b[0]))
         values = [v for _, v in key[1:]]
+        image = [r[3] for r in rows]
+        image_cell = "%+.1f%% (sd %.1f)" % (100 * mean(image), 100 * sd(image)) if n > 1 else "%+.1f%%" % (100 * image[0])
+        feedback = "%.2f" % mean([r[4] for r in rows])
         if markdown:
-            print("| %s | %s | %d | %.4f | %.3f | %s |" % (key[0], " | ".join(values), n, rmse, ssim, " | ".join(cells)))
+            print("| %s | %s | %d | %.4f | %.3f | %s | %s | %s |" % (key[0], " | ".join(values), n, rmse, ssim, image_cell,
+                                                                     feedback, " | ".join(cells)))
         else:
-            print("%-15s %s  n=%d rmse %.4f ssim %.3f  bias %s" % (key[0], " ".join(values), n, rmse, ssim,
-                                                                  " | ".join(cells)))
+            print("%-15s %s  n=%d rmse %.4f ssim %.3f  image %s  feedback %s  bias %s" % (
+                key[0], " ".join(values), n, rmse, ssim, image_cell, feedback, " | ".join(cells)))
 
 
 if __name__ == "__main__":

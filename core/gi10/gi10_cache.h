@@ -12,6 +12,7 @@
 #include "core/render/pinhole.h"
 #include "core/render/reprojection.h"
 #include "core/restir/restir_di_stages.h"
+#include "core/restir/restir_gi_stages.h"
 
 SST_BEGIN
 
@@ -241,6 +242,24 @@ SST_FUNC bool gi_world_restir(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_C
   return true;
 }
 
+// cache_shading path: the radiance leaving x2 toward the probe by a path traced along the probe
+// ray (`pt`'s path, next-event estimation at every vertex, Russian roulette after 3 bounces from
+// the pixel), x2's emission left out as the direct pass has it: every bounce, where a light sample
+// gives the first only. The exact form of what the feedback image approximates for the points it
+// shows, and the light of the points it does not show. False when the path finds no surface.
+SST_FUNC bool gi_cache_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint index, SST_IN(Gi10Ray) r,
+                            SST_OUT(vec3) lo) {
+  lo = vec3(0.0f);
+  Gi10Pixel px = gi_pixel(GI_CTX gi_parity(GF), gi_pixel_index(GF, gi_unpack(GI_SPAWN(index / 64u))));
+  PixelSampler ps = pixel_sampler(GF.seed ^ kGiPathSeed, index, GF.frame);
+  PathState st = path_begin(offset_ray_origin(GF.scene_epsilon, px.position, px.ng), r.direction, ps);
+  trace_path_state(SCENE_CTX LIGHT_CTX RAY_CTX st, restir_gi_path_config(GF.path_bounces, 3, GF.diffuse_only != 0u));
+  GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_SHADOW_RAYS), st.counters.shadow_rays);
+  if (!st.hit) return false;
+  lo = gi_scrub(restir_gi_radiance(st.result.direct, st.first_hit.emission, st.result.indirect));
+  return true;
+}
+
 SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint index) {
   Gi10Ray r = GI_RAYS(index);
   if ((r.flags & GI10_RAY_CELL) == 0u) return;
@@ -254,8 +273,10 @@ SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CT
     return;
   }
   vec3 lo;
-  bool sampled = (GF.flags & GI10_WORLD_RESTIR) != 0u ? gi_world_restir(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo)
-                                                      : gi_light_sample(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
+  bool sampled;
+  if ((GF.flags & GI10_CACHE_PATHS) != 0u) sampled = gi_cache_path(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
+  else if ((GF.flags & GI10_WORLD_RESTIR) != 0u) sampled = gi_world_restir(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
+  else sampled = gi_light_sample(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
   if (!sampled) {
     GI_RAYS(index) = r;
     return;

@@ -28,6 +28,7 @@ using glm::vec4;
 #define GI10_IRRADIANCE_TEXELS 4096u  // S19 integrates the probes' texels, not their L2 SH
 #define GI10_WORLD_RESTIR 8192u     // cache points sample light by RIS with world-space temporal reuse
 #define GI10_WORLD_RESTIR_UNBIASED 16384u  // ... merging with the shadow ray that keeps it unbiased
+#define GI10_CACHE_PATHS 32768u     // cache points the feedback does not serve trace a path (every bounce)
 
 // Stage numbers of the one GPU entry point (gpu/shaders/gi10.comp), in execution order.
 #define GI10_STAGE_GBUFFER 0u
@@ -111,8 +112,8 @@ struct Gi10Frame {
   float denoise_history;     // the denoiser's history cap factor (8: cap = lerp(4, 8 min(n, 8), beta) vign)
   uint restir_candidates;    // world-space ReSTIR: light samples per cache point (8)
   float restir_cap;          // its history's M cap, in multiples of the new reservoir's (20)
+  int path_bounces;          // cache_shading path: bounces counted from the pixel (8)
   uint pad0;
-  uint pad1;
 };
 
 // The G-buffer of a pixel centre: the first hit of the ray through the centre.

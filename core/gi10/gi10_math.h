@@ -20,6 +20,8 @@ SST_CONSTANT float kGiMissDistance = 1e9f;
 // texel_estimate expected: the uniform part of guiding's distribution, as a fraction of its mean
 // weight (the guided share stays 1 / (1 + kGiGuideFloor) = 80% of the rays).
 SST_CONSTANT float kGiGuideFloor = 0.25f;
+// The pixel sampler of cache_shading path's paths is seeded apart from every other stream.
+SST_CONSTANT uint kGiPathSeed = 0x47495041u;  // "GIPA"
 SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 SST_CONSTANT uint kGiBlock = 256u;     // elements per block of the spawn stage's list compaction
 

@@ -190,6 +190,8 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   if (p.world_restir) r.flags |= GI10_WORLD_RESTIR;
   if (choice("world_restir_combine", p.world_restir_combine, {"unbiased", "biased"}) == "unbiased")
     r.flags |= GI10_WORLD_RESTIR_UNBIASED;
+  if (choice("cache_shading", p.cache_shading, {"light", "path"}) == "path") r.flags |= GI10_CACHE_PATHS;
+  if (p.cache_path_bounces < 1 || p.cache_path_bounces > 64) throw Error("gi10 parameter cache_path_bounces must be in 1..64");
   if (p.world_restir_candidates < 1 || p.world_restir_candidates > 64)
     throw Error("gi10 parameter world_restir_candidates must be in 1..64");
   auto positive = [](const char* name, double v) {
@@ -308,6 +310,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   f.denoise_history = params_.denoise_history;
   f.restir_candidates = uint32_t(params_.world_restir_candidates);
   f.restir_cap = params_.world_restir_cap;
+  f.path_bounces = params_.cache_path_bounces;
   executor.begin_frame(context, f);
   executor.clear_counters();
 

@@ -44,6 +44,8 @@ struct Gi10Params {
   int world_restir_candidates = 8;
   float world_restir_cap = 20.0f;
   std::string world_restir_combine = "unbiased";
+  std::string cache_shading = "light";
+  int cache_path_bounces = 8;
 
   template <class V>
   void visit(V&& v) {
@@ -99,6 +101,12 @@ struct Gi10Params {
       "light sample or feedback value (the cache still fills), the cache's exact form");
     v("irradiance_basis", irradiance_basis, "sh|texels: a pixel's irradiance from its probes' L2 SH (the paper) or "
       "from the cosine integrated over their 64 texels (no SH truncation)");
+    v("cache_shading", cache_shading, "light|path: the radiance of a cache point the feedback image does not show (all "
+      "of them without feedback): its direct light (one light sample or world_restir's reservoir: the paper) or a path "
+      "traced from it with every bounce (the exact form, which the feedback approximates where it can; costs a path "
+      "per such point)");
+    v("cache_path_bounces", cache_path_bounces, "cache_shading path: the path's bounces counted from the pixel, as pt's "
+      "max_bounces (8)");
     v("world_restir", world_restir, "world-space ReSTIR for the light at cache points (paper 2.3.1; off in Capsaicin's "
       "defaults): RIS over world_restir_candidates light samples, merged with the reservoir the previous frame left in the "
       "point's hash tile; off: one light sample");

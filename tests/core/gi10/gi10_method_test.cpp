@@ -128,8 +128,9 @@ TEST(Gi10Method, WorldRestirKeepsTheOneBounceMean) {
   // World-space ReSTIR resamples the cache points' light and reuses it over frames; unbiased
   // merging must leave the mean where one light sample per point puts it. Mean indirect light of
   // the Cornell box over three seeds each (one bounce, 32 warm-up frames, 96 x 72). Measured over
-  // six seeds: seed-to-seed sd 0.9% without, 0.6% with, means 0.3% apart; 2.5% is four standard
-  // deviations of the difference of three-seed means.
+  // seeds 0-5 (G): seed-to-seed sd 0.9% without, 1.1% with, means 0.9% apart (1.6 standard
+  // deviations); seeds 0-2: 1.0104. 3% is 3.7 standard deviations of the difference of
+  // three-seed means.
   Scene scene = load_default_scene();
   auto mean_indirect = [&](bool world_restir) {
     double s = 0.0;
@@ -153,7 +154,7 @@ TEST(Gi10Method, WorldRestirKeepsTheOneBounceMean) {
   };
   double off = mean_indirect(false), on = mean_indirect(true);
   std::printf("indirect: world_restir on / off %.4f\n", on / off);
-  EXPECT_NEAR(on / off, 1.0, 0.025);
+  EXPECT_NEAR(on / off, 1.0, 0.03);
 }
 
 TEST(Gi10Method, FeedbackAddsTheLightOfFurtherBounces) {
@@ -170,6 +171,34 @@ TEST(Gi10Method, FeedbackAddsTheLightOfFurtherBounces) {
   double off = mean_indirect(false), on = mean_indirect(true);
   std::printf("indirect mean: feedback off %.5f, on %.5f\n", off, on);
   EXPECT_GT(on, 1.3 * off);
+}
+
+TEST(Gi10Method, CachePathsCarryEveryBounce) {
+  // cache_shading path: every cache point (feedback off) sends back a path's radiance, all
+  // bounces, where a light sample sends one. The Cornell box's indirect light then matches the
+  // path tracer's (8 bounces) and far exceeds the one-bounce estimate. Measured at 96 x 72 after
+  // 32 frames: 0.980 of the path tracer's indirect mean and 1.89x the light samples' here (against
+  // a 1024-spp path tracer, seeds 0-2: 0.989-0.998).
+  Scene scene = load_default_scene();
+  auto mean_indirect = [&](const std::string& method, int spp, const nlohmann::json& params) {
+    RenderOptions o;
+    o.method = method;
+    o.width = 96;
+    o.height = 72;
+    o.spp = spp;
+    o.threads = 2;
+    o.diffuse_only = true;
+    RenderResult r = render_frame(scene, o, params);
+    double s = 0.0;
+    for (float v : r.frame.indirect.data) s += v;
+    return s / double(r.frame.indirect.data.size());
+  };
+  double pt = mean_indirect("pt", 256, {{"max_bounces", 8}});
+  double paths = mean_indirect("gi10", 1, {{"feedback", false}, {"cache_warmup_frames", 32}, {"cache_shading", "path"}});
+  double light = mean_indirect("gi10", 1, {{"feedback", false}, {"cache_warmup_frames", 32}});
+  std::printf("indirect mean: paths / pt %.4f, paths / light %.3f\n", paths / pt, paths / light);
+  EXPECT_NEAR(paths / pt, 1.0, 0.04);  // the seeds' spread is 0.5%; the rest is the method's own bias
+  EXPECT_GT(paths / light, 1.5);
 }
 
 TEST(Gi10Method, RefusesAnUnknownPresetNamingIt) {

@@ -99,53 +99,64 @@ TEST(Gi10HashGrid, AKeyBehindAFreedSlotIsNotDuplicated) {
   EXPECT_EQ(std::count(t.hash.begin(), t.hash.begin() + 16, gi_key_checksum(key(2))), 1);
 }
 
+// An 8x8 image (one screen tile) of floor seen from 5 units above, both frame copies alike, with
+// the probe of this frame spawned at pixel (3, 3) and a previous probe at the same pixel, from
+// whose texels (`radiance`, parity 0) the spawned probe reconstructs its guide.
+struct OneProbe {
+  static constexpr uint32_t w = 8, h = 8;
+  glsl::Gi10Frame frame{};
+  std::vector<glsl::Gi10Pixel> pixels = std::vector<glsl::Gi10Pixel>(2 * w * h);
+  std::vector<uint32_t> mask = std::vector<uint32_t>(2, gi_pack(uvec2(3, 3))), spawn = std::vector<uint32_t>(8, 0u);
+  std::vector<vec4> radiance = std::vector<vec4>(2 * 64, vec4(0.0f));
+  std::vector<glsl::Gi10Ray> rays = std::vector<glsl::Gi10Ray>(64);
+  Gi10Buffers b;
+  OneProbe() {
+    frame.width = w;
+    frame.height = h;
+    frame.tiles_x = frame.tiles_y = 1;
+    frame.spawn_x = frame.spawn_y = 1;
+    frame.mask_levels = 1;
+    frame.k_probe = 1.0f;
+    frame.view.eye = vec3(0, 5, 0);
+    for (uint32_t i = 0; i < 2 * w * h; ++i) {
+      pixels[i].position = vec3(float(i % w) * 0.01f, 0.0f, float((i / w) % h) * 0.01f);
+      pixels[i].depth = 5.0f;
+      pixels[i].ng = vec3(0, 1, 0);
+    }
+    spawn[0] = gi_pack(uvec2(3, 3));
+    b.frame = &frame;
+    b.pixels = pixels.data();
+    b.mask = mask.data();
+    b.radiance = radiance.data();
+    b.spawn = spawn.data();
+    b.rays = rays.data();
+  }
+  // The previous probe's texel c: radiance l(c) in every channel, a miss (direction only, no
+  // parallax), in this frame's copy (even frames).
+  template <class F>
+  void set_guide(F l) {
+    for (uint32_t c = 0; c < 64; ++c) radiance[c] = vec4(vec3(l(c)), kGiMissDistance);
+  }
+};
+
 TEST(Gi10Guiding, RaysPerTexelFollowTheReconstructedLuminanceTimesCosine) {
   // An 8x8 image (one screen tile) of floor; the probe spawned at pixel (3, 3) reconstructs from
   // the reprojected probe at the same pixel, whose texel c holds luminance c % 5 (0 for some), so
   // every lane has history and draws texels in proportion to luminance x cos (never a texel of
   // weight 0). Over 4000 frames' draws the counts match the expectation (chi-square).
-  const uint32_t w = 8, h = 8;
-  glsl::Gi10Frame f{};
-  f.width = w;
-  f.height = h;
-  f.tiles_x = f.tiles_y = 1;
-  f.spawn_x = f.spawn_y = 1;
-  f.mask_levels = 1;
-  f.k_probe = 1.0f;
-  f.flags = GI10_GUIDING;
-  f.view.eye = vec3(0, 5, 0);
-  std::vector<glsl::Gi10Pixel> pixels(2 * w * h);
-  for (uint32_t i = 0; i < w * h; ++i) {
-    pixels[i].position = vec3(float(i % w) * 0.01f, 0.0f, float(i / w) * 0.01f);
-    pixels[i].depth = 5.0f;
-    pixels[i].ng = vec3(0, 1, 0);
-  }
-  std::vector<uint32_t> mask(2, kGiNoProbe), spawn(8, 0u);
-  mask[0] = gi_pack(uvec2(3, 3));
-  spawn[0] = gi_pack(uvec2(3, 3));
-  std::vector<vec4> radiance(2 * 64);
+  OneProbe p;
+  p.frame.flags = GI10_GUIDING;
+  p.set_guide([](uint32_t c) { return float(c % 5); });
   std::vector<double> weight(64, 0.0);
-  for (uint32_t c = 0; c < 64; ++c) {
-    float l = float(c % 5);
-    radiance[c] = vec4(l, l, l, kGiMissDistance);  // misses: direction only, no parallax
-  }
-  std::vector<glsl::Gi10Ray> rays(64);
-  Gi10Buffers b;
-  b.frame = &f;
-  b.pixels = pixels.data();
-  b.mask = mask.data();
-  b.radiance = radiance.data();
-  b.spawn = spawn.data();
-  b.rays = rays.data();
   std::vector<double> count(64, 0.0);
   int lanes_with_history = 0;
   for (uint32_t frame = 0; frame < 4000; ++frame) {
-    f.frame = 2 * frame;  // parity 0: the buffers above are this frame's
-    gi_stage_sample(b, 0);
+    p.frame.frame = 2 * frame;  // parity 0: the buffers above are this frame's
+    gi_stage_sample(p.b, 0);
     lanes_with_history = 0;
     for (uint32_t c = 0; c < 64; ++c) {
-      count[rays[c].texel] += 1.0;
-      if (rays[c].recon_distance >= 0.0f) ++lanes_with_history;
+      count[p.rays[c].texel] += 1.0;
+      if (p.rays[c].recon_distance >= 0.0f) ++lanes_with_history;
     }
   }
   ASSERT_EQ(lanes_with_history, 64);  // the probe reprojects onto itself: every texel has history
@@ -171,8 +182,8 @@ TEST(Gi10Guiding, RaysPerTexelFollowTheReconstructedLuminanceTimesCosine) {
   // summing to the 64 rays.
   double expected_sum = 0.0;
   for (uint32_t c = 0; c < 64; ++c) {
-    EXPECT_NEAR(rays[c].expected, 64.0 * weight[c] / total, 1e-4) << "texel " << c;
-    expected_sum += rays[c].expected;
+    EXPECT_NEAR(p.rays[c].expected, 64.0 * weight[c] / total, 1e-4) << "texel " << c;
+    expected_sum += p.rays[c].expected;
   }
   EXPECT_NEAR(expected_sum, 64.0, 1e-3);
 }
@@ -183,44 +194,18 @@ TEST(Gi10Guiding, ExpectedTexelsAreUnbiasedWhereTheFillIsNot) {
   // bright), while the sum over the expected ray count (texel_estimate expected) averages to the
   // true radiance. True radiance: texel c holds 1 + (c % 5); the guide reconstructs 0.25 + c % 5
   // (wrong, as history is), hysteresis off so each frame stands alone.
-  const uint32_t w = 8, h = 8;
-  glsl::Gi10Frame f{};
-  f.width = w;
-  f.height = h;
-  f.tiles_x = f.tiles_y = 1;
-  f.spawn_x = f.spawn_y = 1;
-  f.mask_levels = 1;
-  f.k_probe = 1.0f;
-  f.view.eye = vec3(0, 5, 0);
-  std::vector<glsl::Gi10Pixel> pixels(2 * w * h);
-  for (uint32_t i = 0; i < 2 * w * h; ++i) {
-    pixels[i].position = vec3(float(i % w) * 0.01f, 0.0f, float((i / w) % h) * 0.01f);
-    pixels[i].depth = 5.0f;
-    pixels[i].ng = vec3(0, 1, 0);
-  }
-  std::vector<uint32_t> mask(2, kGiNoProbe), spawn(8, 0u);
-  mask[0] = mask[1] = gi_pack(uvec2(3, 3));
-  spawn[0] = gi_pack(uvec2(3, 3));
-  std::vector<glsl::Gi10Ray> rays(64);
-  Gi10Buffers b;
-  b.frame = &f;
-  b.pixels = pixels.data();
-  b.mask = mask.data();
-  b.spawn = spawn.data();
-  b.rays = rays.data();
+  OneProbe p;
   auto mean_texels = [&](uint32_t flags) {
-    f.flags = GI10_GUIDING | GI10_BACKUP_MEAN | flags;
-    std::vector<vec4> radiance(2 * 64);
-    b.radiance = radiance.data();
+    p.frame.flags = GI10_GUIDING | GI10_BACKUP_MEAN | flags;
     std::vector<double> mean(64, 0.0);
     const int frames = 4000;
     for (int frame = 0; frame < frames; ++frame) {
-      f.frame = 2 * uint32_t(frame);
-      for (uint32_t c = 0; c < 64; ++c) radiance[c] = vec4(vec3(0.25f + float(c % 5)), kGiMissDistance);
-      gi_stage_sample(b, 0);
-      for (uint32_t c = 0; c < 64; ++c) rays[c].radiance = vec3(1.0f + float(rays[c].texel % 5));
-      gi_stage_blend(b, 0);
-      for (uint32_t c = 0; c < 64; ++c) mean[c] += double(radiance[c].x) / frames;
+      p.frame.frame = 2 * uint32_t(frame);
+      p.set_guide([](uint32_t c) { return 0.25f + float(c % 5); });  // the blend below overwrites it
+      gi_stage_sample(p.b, 0);
+      for (uint32_t c = 0; c < 64; ++c) p.rays[c].radiance = vec3(1.0f + float(p.rays[c].texel % 5));
+      gi_stage_blend(p.b, 0);
+      for (uint32_t c = 0; c < 64; ++c) mean[c] += double(p.radiance[c].x) / frames;
     }
     return mean;
   };
@@ -230,7 +215,7 @@ TEST(Gi10Guiding, ExpectedTexelsAreUnbiasedWhereTheFillIsNot) {
     double truth = 1.0 + double(c % 5);
     // The estimate is truth k / n with k the rays landing (mean n, variance at most n): its mean
     // over the frames has a standard deviation of at most truth / sqrt(n frames).
-    double n = rays[c].expected;
+    double n = p.rays[c].expected;
     ASSERT_GT(n, 0.0) << "texel " << c;
     worst_z = std::max(worst_z, std::abs(expected[c] - truth) / (truth / std::sqrt(n * 4000.0)));
     if (c % 5 == 0) fill_dim += fill[c] / truth / 13.0;  // the 13 texels the guide predicts dim

@@ -13,7 +13,7 @@ namespace {
 
 enum Buffer : size_t {
   kFrame, kPixels, kEmission, kMask, kRadiance, kSh, kSpawn, kRays, kHash, kValues, kAccum,
-  kDenoise, kAux, kFeedback, kCounters, kOutput, kRayReservoirs, kSlotReservoirs, kSlotSurfaces, kSlotKeys,
+  kDenoise, kAux, kFeedback, kCounters, kOutput, kRayReservoirs, kSlotReservoirs, kSlotSurfaces,
   kBufferCount
 };
 
@@ -51,15 +51,14 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   const std::pair<uint64_t, size_t> shapes[kBufferCount] = {
       {1, sizeof(glsl::Gi10Frame)}, {2 * px, sizeof(glsl::Gi10Pixel)}, {px, 16},  {2 * uint64_t(s.mask_total), 4},
       {2 * nt * 64, 16},            {2 * nt * 9, 16},                 {s.spawn_words(), 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
-      {2 * t, 4},                   {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
+      {2 * t + 3 * uint64_t(s.reservoir_slots), 4}, {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
       {3 * px, 16},                 {px, 16},                         {GI10_COUNTERS, 4}, {px, 16},
-      {rr, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirSurface)}, {3 * rt, 4}};
+      {rr, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirSurface)}};
   const char* names[kBufferCount] = {"gi10 frame", "gi10 pixels", "gi10 emission", "gi10 probe mask",
                                      "gi10 probe radiance", "gi10 probe SH", "gi10 spawn lists", "gi10 probe rays",
                                      "gi10 hash", "gi10 cache values", "gi10 cache accumulators", "gi10 denoiser",
                                      "gi10 denoiser aux", "gi10 feedback", "gi10 counters", "gi10 irradiance",
-                                     "gi10 ray reservoirs", "gi10 reservoir slots", "gi10 reservoir points",
-                                     "gi10 reservoir keys"};
+                                     "gi10 ray reservoirs", "gi10 reservoir slots", "gi10 reservoir points"};
   buffers_.clear();
   for (size_t b = 0; b < kBufferCount; ++b) {
     buffers_.push_back(make_buffer(vk, size_t(shapes[b].first), shapes[b].second, names[b]));

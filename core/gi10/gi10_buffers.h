@@ -17,15 +17,15 @@
 // frame parity); EMISSION vec4 W H (emission seen at the pixel centres); MASK uint 2 M (M: all
 // mips of the tile grid); RADIANCE vec4 2 Nt 64 (rgb, hit distance); SH vec4 2 Nt 9; SPAWN uint
 // gi_spawn_words (spawn list and the patch's lists); RAYS Gi10Ray Ns 64; HASH uint 2 T (checksums,
-// then last-touch frames); VALUES vec4 T 85; ACCUM uint T 64 kGiAccumWords; DENOISE vec4 3 W H
+// then last-touch frames; with world_restir 3 T more: each reservoir slot's winning ray key this
+// frame, then the frame + 2 at which each parity's slot was written); VALUES vec4 T 85; ACCUM uint T 64 kGiAccumWords; DENOISE vec4 3 W H
 // (irradiance + hint, history x2); AUX vec4 3 W H (colour delta and blur masks x2, filter
 // scratch); FEEDBACK vec4 W H; COUNTERS uint GI10_COUNTERS; OUTPUT vec4 W H (E_out); and, with
 // world_restir (else one element each), RAY_RESERVOIRS RestirReservoir Ns 64 (each ray's),
 // SLOT_RESERVOIRS RestirReservoir 2 T and SLOT_SURFACES RestirSurface 2 T (a reservoir slot's
 // stored reservoir and the cache point it belongs to, by frame parity; T slots, as many as hash
-// tiles), SLOT_KEYS uint 3 T (the frame's winning ray key per slot, then the frame + 2 at which
-// each parity's entry was written). No buffer
-// exceeds lavapipe's 128 MiB at 1920 x 1080 with the default cache.
+// tiles). No buffer exceeds lavapipe's 128 MiB at 1920 x 1080 with the default cache, and the
+// stage binds 32 storage buffers with the scene's, Mesa 22 lavapipe's limit per stage.
 #ifndef SST_CORE_GI10_GI10_BUFFERS_H
 #define SST_CORE_GI10_GI10_BUFFERS_H
 #include "core/gi10/gi10_layout.h"
@@ -74,6 +74,10 @@ SST_FUNC uint gi_mask_offset(SST_IN(Gi10Frame) f, uint level) {
 SST_FUNC uint gi_mask_total(SST_IN(Gi10Frame) f) { return gi_mask_offset(f, f.mask_levels); }
 
 SST_FUNC bool gi_is_miss(float distance) { return distance >= 0.5f * kGiMissDistance; }
+
+// world_restir: reservoir slot i's word in HASH (the slot's key this frame: slot_keys + i; the
+// frame stamp of parity p's entry: slot_keys + T + p T + i).
+SST_FUNC uint gi_slot_keys(SST_IN(Gi10Frame) f) { return 2u * gi_hash_tiles(f); }
 
 // The screen-space cell size at a point: the distance to the eye times k (Alg. 6 of the paper).
 SST_FUNC float gi_cell_size(vec3 eye, vec3 x, float k) { return length3(eye - x) * k; }

@@ -18,7 +18,7 @@ SST_BEGIN
 
 // ---- S1: free the hash tiles untouched for tile_decay frames ---------------------------------------
 SST_FUNC void gi_stage_purge(GI_CTX_PARAM uint slot) {
-  if ((GF.flags & GI10_WORLD_RESTIR) != 0u) GI_SLOT_KEYS(slot) = 0xFFFFFFFFu;  // no reservoir won yet
+  if ((GF.flags & GI10_WORLD_RESTIR) != 0u) GI_HASH(gi_slot_keys(GF) + slot) = 0xFFFFFFFFu;  // no reservoir won yet
   if (GI_HASH(slot) == 0u) return;
   uint age = GF.frame - GI_HASH(gi_hash_tiles(GF) + slot);
   if (age >= GF.tile_decay) {
@@ -205,9 +205,10 @@ SST_FUNC bool gi_light_sample(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_C
 // World-space ReSTIR at x2 (the paper's section 2.3.1, with sst's reservoirs of core/restir):
 // RIS over restir_candidates light samples with visibility reuse, then merged by pairwise MIS
 // with the reservoir the previous frame left in the point's slot, where that one's point lies
-// within 16 cells (its tile's diagonal) and faces the same way (normals within 25 degrees), its M capped at restir_cap
-// times the new one's; visibility reuse again, and the kept sample's contribution times W. The
-// reservoir enters the slot's contest (STORE_RESERVOIR). False when no light could be picked.
+// within 16 cells (its tile's diagonal) and faces the same way (normals within 25 degrees), its
+// M capped at restir_cap times the new one's; visibility reuse again, and the kept sample's
+// contribution times W. The reservoir enters the slot's contest (STORE_RESERVOIR). False when no
+// light could be picked.
 SST_FUNC bool gi_world_restir(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint index,
                               SST_INOUT(Gi10Ray) r, SST_OUT(vec3) lo) {
   lo = vec3(0.0f);
@@ -219,7 +220,7 @@ SST_FUNC bool gi_world_restir(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_C
   uint slots = gi_hash_tiles(GF);
   uint slot = gi_reservoir_slot(GI_CTX r);
   uint prev = (gi_parity(GF) ^ 1u) * slots + slot;
-  if (GF.has_history != 0u && GI_SLOT_KEYS(slots + prev) == GF.frame + 1u) {  // written by the previous frame
+  if (GF.has_history != 0u && GI_HASH(gi_slot_keys(GF) + slots + prev) == GF.frame + 1u) {  // written by the previous frame
     RestirSurface sp = GI_SLOT_SURFACES(prev);
     RestirReservoir rp = GI_SLOT_RESERVOIRS(prev);
     if (dot3(sp.ng, s.ng) > kRestirNormalCosine && length3(sp.p - s.p) < 16.0f * r.cell_size) {
@@ -237,7 +238,7 @@ SST_FUNC bool gi_world_restir(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_C
   if (kept.light == LIGHT_NONE) return false;
   GI_RAY_RESERVOIRS(index) = kept;
   r.flags |= GI10_RAY_RESERVOIR;
-  GI_ATOMIC_MIN(GI_SLOT_KEYS(slot), gi_reservoir_key(GF, index));
+  GI_ATOMIC_MIN(GI_HASH(gi_slot_keys(GF) + slot), gi_reservoir_key(GF, index));
   lo = gi_scrub(restir_shade(SCENE_CTX LIGHT_CTX s, true, kept));
   return true;
 }
@@ -301,12 +302,12 @@ SST_FUNC void gi_stage_store_reservoir(GI_CTX_PARAM uint index) {
   Gi10Ray r = GI_RAYS(index);
   if ((r.flags & GI10_RAY_RESERVOIR) == 0u) return;
   uint slot = gi_reservoir_slot(GI_CTX r);
-  if (GI_SLOT_KEYS(slot) != gi_reservoir_key(GF, index)) return;
+  if (GI_HASH(gi_slot_keys(GF) + slot) != gi_reservoir_key(GF, index)) return;
   uint slots = gi_hash_tiles(GF);
   uint entry = gi_parity(GF) * slots + slot;
   GI_SLOT_RESERVOIRS(entry) = GI_RAY_RESERVOIRS(index);
   GI_SLOT_SURFACES(entry) = gi_cache_surface(r);
-  GI_SLOT_KEYS(slots + entry) = GF.frame + 2u;
+  GI_HASH(gi_slot_keys(GF) + slots + entry) = GF.frame + 2u;
 }
 
 // ---- S12: fold this frame's samples into the touched tiles' cells, then their mips ----------------

@@ -32,7 +32,6 @@ struct Gi10Buffers {
   RestirReservoir* ray_reservoirs = nullptr;
   RestirReservoir* slot_reservoirs = nullptr;
   RestirSurface* slot_surfaces = nullptr;
-  uint32_t* slot_keys = nullptr;
 };
 
 inline uint32_t gi_atomic_cas(uint32_t& target, uint32_t compare, uint32_t value) {
@@ -70,7 +69,6 @@ inline uint32_t gi_atomic_min(uint32_t& target, uint32_t value) {
 #define GI_RAY_RESERVOIRS(i) gi.ray_reservoirs[i]
 #define GI_SLOT_RESERVOIRS(i) gi.slot_reservoirs[i]
 #define GI_SLOT_SURFACES(i) gi.slot_surfaces[i]
-#define GI_SLOT_KEYS(i) gi.slot_keys[i]
 #define GI_ATOMIC_ADD(ref, v) __atomic_fetch_add(&(ref), (v), __ATOMIC_RELAXED)
 #define GI_ATOMIC_CAS(ref, compare, v) ::sst::gi_atomic_cas(ref, compare, v)
 #define GI_ATOMIC_MIN(ref, v) ::sst::gi_atomic_min(ref, v)

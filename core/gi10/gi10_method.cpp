@@ -65,7 +65,7 @@ class Gi10Cpu final : public Gi10Executor {
     sh_.assign(2 * nt * 9, vec4(0.0f));
     spawn_.assign(s.spawn_words(), 0u);
     rays_.assign(ns * 64, glsl::Gi10Ray{});
-    hash_.assign(2 * t, 0u);
+    hash_.assign(2 * t + 3 * uint64_t(s.reservoir_slots), 0u);
     values_.assign(t * kGiCellsPerTile, vec4(0.0f));
     accum_.assign(t * 64 * kGiAccumWords, 0u);
     emission_.assign(px, vec4(0.0f));
@@ -78,7 +78,6 @@ class Gi10Cpu final : public Gi10Executor {
     ray_reservoirs_.assign(rr, RestirReservoir{});
     slot_reservoirs_.assign(2 * rt, RestirReservoir{});
     slot_surfaces_.assign(2 * rt, RestirSurface{});
-    slot_keys_.assign(3 * rt, 0u);
     b_.frame = &frame_;
     b_.pixels = pixels_.data();
     b_.mask = mask_.data();
@@ -98,7 +97,6 @@ class Gi10Cpu final : public Gi10Executor {
     b_.ray_reservoirs = ray_reservoirs_.data();
     b_.slot_reservoirs = slot_reservoirs_.data();
     b_.slot_surfaces = slot_surfaces_.data();
-    b_.slot_keys = slot_keys_.data();
   }
   void begin_frame(const RenderContext& context, const glsl::Gi10Frame& frame) override {
     context_ = &context;
@@ -145,7 +143,6 @@ class Gi10Cpu final : public Gi10Executor {
   std::vector<glsl::Gi10Ray> rays_;
   std::vector<RestirReservoir> ray_reservoirs_, slot_reservoirs_;
   std::vector<RestirSurface> slot_surfaces_;
-  std::vector<uint32_t> slot_keys_;
   Gi10Buffers b_;
 };
 

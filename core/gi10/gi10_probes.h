@@ -380,7 +380,8 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
     r.radiance = vec3(0.0f);
     // Texel c receives each guided lane's ray with probability w_c / total, and lane c's own when
     // it explores.
-    r.expected = (guided ? 0.0f : 1.0f) + (guided_run ? guided_lanes * ((cdf[c + 1u] - cdf[c]) / total) : 0.0f);
+    SST_PRECISE float expected = (guided ? 0.0f : 1.0f) + (guided_run ? guided_lanes * ((cdf[c + 1u] - cdf[c]) / total) : 0.0f);
+    r.expected = expected;
     GI_RAYS(j * 64u + c) = r;
   }
 }
@@ -416,7 +417,8 @@ SST_FUNC void gi_stage_blend(GI_CTX_PARAM uint j) {
     if (r.recon_distance >= 0.0f && (GF.flags & GI10_HYSTERESIS) != 0u) {
       vec4 history = gi_vec4(r.recon, r.recon_distance);
       float alpha = gi_hysteresis(luminance(gi_rgb(value)), luminance(r.recon));
-      value = value + (history - value) * alpha;
+      SST_PRECISE vec4 blended = value + (history - value) * alpha;  // precise: no fused multiply-add on a GPU
+      value = blended;
     }
     GI_RADIANCE(cur * gi_tiles(GF) * 64u + tile * 64u + c) = value;
   }

@@ -8,8 +8,8 @@
 // Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
 // (LIGHT_BUFFERS), 13 the frame's Gi10Frame, 14..28 GI-1.0's buffers in the order of
 // gpu/gi10_vulkan.cpp (pixels, emission, mask, radiance, sh, spawn, rays, hash, values, accum,
-// denoise, aux, feedback, counters, output, ray reservoirs, tile reservoirs, tile surfaces, tile
-// keys). Push constants: Gi10Push.
+// denoise, aux, feedback, counters, output, ray reservoirs, slot reservoirs, slot surfaces): 32
+// storage buffers, Mesa 22 lavapipe's limit per stage. Push constants: Gi10Push.
 #include "core/scene/scene_layout.h"
 #include "core/accel/bvh_layout.h"
 #include "core/lights/light_layout.h"
@@ -37,7 +37,6 @@ layout(std430, binding = 28) buffer Output { vec4 gi_output_buffer[]; };
 layout(std430, binding = 29) buffer RayReservoirs { RestirReservoir gi_ray_reservoirs_buffer[]; };
 layout(std430, binding = 30) buffer SlotReservoirs { RestirReservoir gi_slot_reservoirs_buffer[]; };
 layout(std430, binding = 31) buffer SlotSurfaces { RestirSurface gi_slot_surfaces_buffer[]; };
-layout(std430, binding = 32) buffer SlotKeys { uint gi_slot_keys_buffer[]; };
 layout(push_constant) uniform Push { Gi10Push push; };
 #define SCENE_RAY_EPSILON gi_frame_constants.scene_epsilon
 // The scene kernels first: the traversal's alpha test (BVH_ALPHA_TEST) is one of them.
@@ -67,7 +66,6 @@ layout(push_constant) uniform Push { Gi10Push push; };
 #define GI_RAY_RESERVOIRS(i) gi_ray_reservoirs_buffer[i]
 #define GI_SLOT_RESERVOIRS(i) gi_slot_reservoirs_buffer[i]
 #define GI_SLOT_SURFACES(i) gi_slot_surfaces_buffer[i]
-#define GI_SLOT_KEYS(i) gi_slot_keys_buffer[i]
 #define GI_ATOMIC_ADD(ref, v) atomicAdd(ref, v)
 #define GI_ATOMIC_CAS(ref, compare, v) atomicCompSwap(ref, compare, v)
 #define GI_ATOMIC_MIN(ref, v) atomicMin(ref, v)

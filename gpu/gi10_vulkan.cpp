@@ -46,14 +46,13 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   const VulkanContext& vk = gpu_->vulkan();
   sizes_ = s;
   uint64_t px = s.pixels(), nt = s.tiles(), ns = s.spawns(), t = s.hash_tiles;
-  // world_restir's buffers: one element each when it is off.
-  uint64_t rt = std::max<uint64_t>(s.reservoir_slots, 1), rr = s.reservoir_slots > 0 ? ns * 64 : 1;
   const std::pair<uint64_t, size_t> shapes[kBufferCount] = {
       {1, sizeof(glsl::Gi10Frame)}, {2 * px, sizeof(glsl::Gi10Pixel)}, {px, 16},  {2 * uint64_t(s.mask_total), 4},
       {2 * nt * 64, 16},            {2 * nt * 9, 16},                 {s.spawn_words(), 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
-      {2 * t + 3 * uint64_t(s.reservoir_slots), 4}, {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
+      {s.hash_words(), 4},          {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
       {3 * px, 16},                 {px, 16},                         {GI10_COUNTERS, 4}, {px, 16},
-      {rr, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirReservoir)}, {2 * rt, sizeof(RestirSurface)}};
+      {s.ray_reservoirs(), sizeof(RestirReservoir)}, {s.slot_entries(), sizeof(RestirReservoir)},
+      {s.slot_entries(), sizeof(RestirSurface)}};
   const char* names[kBufferCount] = {"gi10 frame", "gi10 pixels", "gi10 emission", "gi10 probe mask",
                                      "gi10 probe radiance", "gi10 probe SH", "gi10 spawn lists", "gi10 probe rays",
                                      "gi10 hash", "gi10 cache values", "gi10 cache accumulators", "gi10 denoiser",

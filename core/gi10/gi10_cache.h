@@ -254,7 +254,7 @@ SST_FUNC bool gi_cache_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX
   Gi10Pixel px = gi_pixel(GI_CTX gi_parity(GF), gi_pixel_index(GF, gi_unpack(GI_SPAWN(index / 64u))));
   PixelSampler ps = pixel_sampler(GF.seed ^ kGiPathSeed, index, GF.frame);
   PathState st = path_begin(offset_ray_origin(GF.scene_epsilon, px.position, px.ng), r.direction, ps);
-  trace_path_state(SCENE_CTX LIGHT_CTX RAY_CTX st, restir_gi_path_config(GF.path_bounces, 3, GF.diffuse_only != 0u));
+  trace_path_state(SCENE_CTX LIGHT_CTX RAY_CTX st, restir_gi_path_config(GF.path_bounces, kGiPathRrMinBounces, GF.diffuse_only != 0u));
   GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_SHADOW_RAYS), st.counters.shadow_rays);
   if (!st.hit) return false;
   lo = gi_scrub(restir_gi_radiance(st.result.direct, st.first_hit.emission, st.result.indirect));

@@ -22,6 +22,8 @@ SST_CONSTANT float kGiMissDistance = 1e9f;
 SST_CONSTANT float kGiGuideFloor = 0.25f;
 // The pixel sampler of cache_shading path's paths is seeded apart from every other stream.
 SST_CONSTANT uint kGiPathSeed = 0x47495041u;  // "GIPA"
+// ... and Russian roulette may end them after this many bounces counted from the pixel, as pt's.
+SST_CONSTANT int kGiPathRrMinBounces = 3;
 SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 SST_CONSTANT uint kGiBlock = 256u;     // elements per block of the spawn stage's list compaction
 

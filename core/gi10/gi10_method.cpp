@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -65,7 +66,7 @@ class Gi10Cpu final : public Gi10Executor {
     sh_.assign(2 * nt * 9, vec4(0.0f));
     spawn_.assign(s.spawn_words(), 0u);
     rays_.assign(ns * 64, glsl::Gi10Ray{});
-    hash_.assign(2 * t + 3 * uint64_t(s.reservoir_slots), 0u);
+    hash_.assign(s.hash_words(), 0u);
     values_.assign(t * kGiCellsPerTile, vec4(0.0f));
     accum_.assign(t * 64 * kGiAccumWords, 0u);
     emission_.assign(px, vec4(0.0f));
@@ -74,10 +75,9 @@ class Gi10Cpu final : public Gi10Executor {
     feedback_.assign(px, vec4(0.0f));
     counters_.assign(GI10_COUNTERS, 0u);
     output_.assign(px, vec4(0.0f));
-    uint64_t rt = std::max<uint64_t>(s.reservoir_slots, 1), rr = s.reservoir_slots > 0 ? ns * 64 : 1;
-    ray_reservoirs_.assign(rr, RestirReservoir{});
-    slot_reservoirs_.assign(2 * rt, RestirReservoir{});
-    slot_surfaces_.assign(2 * rt, RestirSurface{});
+    ray_reservoirs_.assign(s.ray_reservoirs(), RestirReservoir{});
+    slot_reservoirs_.assign(s.slot_entries(), RestirReservoir{});
+    slot_surfaces_.assign(s.slot_entries(), RestirSurface{});
     b_.frame = &frame_;
     b_.pixels = pixels_.data();
     b_.mask = mask_.data();
@@ -215,6 +215,9 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
 
 uint64_t Gi10Sizes::list_blocks() const { return (spawns() + kGiBlock - 1) / kGiBlock + (tiles() + kGiBlock - 1) / kGiBlock; }
 uint64_t Gi10Sizes::spawn_words() const { return 3 * spawns() + 2 * tiles() + list_blocks() + 2; }
+uint64_t Gi10Sizes::hash_words() const { return 2 * uint64_t(hash_tiles) + 3 * uint64_t(reservoir_slots); }
+uint64_t Gi10Sizes::ray_reservoirs() const { return reservoir_slots > 0 ? spawns() * 64 : 1; }
+uint64_t Gi10Sizes::slot_entries() const { return 2 * std::max<uint64_t>(reservoir_slots, 1); }
 
 glm::uvec2 gi10_mask_level_size(const Gi10Sizes& sizes, uint32_t level) {
   glm::uvec2 size(sizes.tiles_x, sizes.tiles_y);

@@ -29,6 +29,11 @@ struct Gi10Sizes {
   // Blocks of the spawn stage's list compaction (override flags, then empty-tile flags).
   uint64_t list_blocks() const;
   uint64_t spawn_words() const;  // the SPAWN buffer's elements (gi10_stages.h)
+  uint64_t hash_words() const;   // the HASH buffer's: checksums, touches, world_restir's keys
+  // world_restir's buffers (gi10_buffers.h), one element each when it is off: RAY_RESERVOIRS and
+  // each of SLOT_RESERVOIRS and SLOT_SURFACES.
+  uint64_t ray_reservoirs() const;
+  uint64_t slot_entries() const;
   bool operator==(const Gi10Sizes&) const = default;
 };
 Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params);

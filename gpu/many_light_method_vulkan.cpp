@@ -2,6 +2,7 @@
 
 #include "core/manylight/sampler_inputs.h"
 #include "core/vpl/vpl_ply.h"
+#include "gpu/brsm_pass.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/light_tree_build_pass.h"
 #include "gpu/many_light_pass.h"
@@ -21,9 +22,18 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   double vpl_gpu_ms = 0.0;
   const float view_distance = median_view_distance(ctx);
   VplSet vpls = timer.time("vpl_generation", [&] {
+    const EmissionFocus focus = view_emission_focus(ctx, view_distance, vpl_params.directional_focus);
+    if (vpl_params.vpl_source == "brsm") {
+      VplSet set = generate_brsm_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.lights.packed(),
+                                          ctx.scene, vpl_params,
+                                          view_params(ctx.camera, ctx.width, ctx.height, ctx.options.seed),
+                                          ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, focus, gpu.top_level());
+      for (const auto& [stage, ms] : vpl_stats.stage_ms) vpl_gpu_ms += ms;
+      return set;
+    }
     return generate_vpls_gpu(gpu.vulkan(), gpu.scene(), gpu.bvh(), gpu.lights(), ctx.scene, vpl_params,
-                             ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms, 0,
-                             view_emission_focus(ctx, view_distance, vpl_params.directional_focus), gpu.top_level());
+                             ctx.options.seed, ctx.options.diffuse_only, &vpl_stats, &vpl_gpu_ms, 0, focus,
+                             gpu.top_level());
   });
   if (!vpl_params.export_vpls.empty()) write_vpls_ply(vpl_params.export_vpls, vpls);
   VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth, view_distance};
@@ -50,7 +60,7 @@ FrameOutput VulkanManyLightMethod::render(const RenderContext& ctx, const GpuRen
   auto pipeline = timer.time("shader_compile", [&] { return make_many_light_pipeline(gpu, in.params); });
   ManyLightPassOutput out = timer.time("sampling", [&] {
     return render_many_light(gpu, *pipeline, *inputs, ctx.camera, ctx.options.seed, ctx.options.spp,
-                             render_flags(ctx.options), vpl_params.clamp_compensation ? vpl_params.vpl_max_bounces : 0,
+                             render_flags(ctx.options), vpl_params.clamp_compensation ? vpl_params.light_bounces() : 0,
                              vpl_params.vpl_min_bounces, frame);
   });
 

@@ -503,6 +503,21 @@ SST_FUNC bool light_emit_triangle(SCENE_CTX_PARAM LIGHT_CTX_PARAM uint k, vec2 u
   return true;
 }
 
+// Where light leaves distribution entry `index`: a position on it (u_pos) and a direction
+// (u_dir), e.weight the emitted flux over the pdf of both (LightSampler::sample_emission without
+// the pick). Directional lights read only u_pos, punctual ones only u_dir.
+SST_FUNC bool light_emit(SCENE_CTX_PARAM LIGHT_CTX_PARAM uint index, vec2 u_pos, vec2 u_dir,
+                         SST_IN(EmissionFocus) focus, SST_INOUT(EmissionSample) e) {
+  e.light = index;
+  uint punctual_count = LIGHT_HEADER.punctual_count;
+  if (index < punctual_count) {
+    LightPunctual light = LIGHT_PUNCTUAL(index);
+    return light.type == LIGHT_DIRECTIONAL ? light_emit_directional(LIGHT_CTX light, u_pos, focus, e)
+                                           : light_emit_point_or_spot(light, u_dir, e);
+  }
+  return light_emit_triangle(SCENE_CTX LIGHT_CTX index - punctual_count, u_pos, u_dir, e);
+}
+
 // A light picked with u_pick in proportion to its power (the distribution light_sample uses), a
 // position on it (u_pos) and a direction (u_dir). The pick has its own number (unlike
 // light_sample, which remaps one): with a million emissive triangles a remapped 24-bit number
@@ -519,17 +534,7 @@ SST_FUNC bool light_sample_emission(SCENE_CTX_PARAM LIGHT_CTX_PARAM float u_pick
   uint index = light_pick_index(LIGHT_CTX u_pick);
   float pick = light_pmf(LIGHT_CTX index);
   if (!(pick > 0.0f)) return false;
-  e.light = index;
-  bool ok;
-  uint punctual_count = LIGHT_HEADER.punctual_count;
-  if (index < punctual_count) {
-    LightPunctual light = LIGHT_PUNCTUAL(index);
-    ok = light.type == LIGHT_DIRECTIONAL ? light_emit_directional(LIGHT_CTX light, u_pos, focus, e)
-                                         : light_emit_point_or_spot(light, u_dir, e);
-  } else {
-    ok = light_emit_triangle(SCENE_CTX LIGHT_CTX index - punctual_count, u_pos, u_dir, e);
-  }
-  if (!ok) return false;
+  if (!light_emit(SCENE_CTX LIGHT_CTX index, u_pos, u_dir, focus, e)) return false;
   SST_PRECISE vec3 w = e.weight / pick;
   e.weight = w;
   return is_finite3(e.weight) && max_component(e.weight) > 0.0f;

@@ -7,6 +7,7 @@
 #include "core/manylight/shading_point.h"
 #include "core/pt/path_batch.h"
 #include "core/render/pixel_loop.h"
+#include "core/brsm/brsm_generator.h"
 #include "core/vpl/vpl_clamp.h"
 #include "core/vpl/vpl_ply.h"
 
@@ -56,8 +57,13 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
   VplStats vpl_stats;
   const float view_distance = median_view_distance(ctx);
   VplSet vpls = timer.time("vpl_generation", [&] {
+    const EmissionFocus focus = view_emission_focus(ctx, view_distance, vpl_params_.directional_focus);
+    if (vpl_params_.vpl_source == "brsm")
+      return generate_brsm_vpls(ctx.scene, ctx.accel, ctx.lights, vpl_params_,
+                                view_params(ctx.camera, ctx.width, ctx.height, ctx.options.seed), ctx.options.seed,
+                                ctx.options.diffuse_only, &vpl_stats, focus);
     return generate_vpls(ctx.scene, ctx.accel, ctx.lights, vpl_params_, ctx.options.seed, ctx.options.diffuse_only,
-                         &vpl_stats, view_emission_focus(ctx, view_distance, vpl_params_.directional_focus));
+                         &vpl_stats, focus);
   });
   if (!vpl_params_.export_vpls.empty()) write_vpls_ply(vpl_params_.export_vpls, vpls);
   VplLighting lighting{ctx, vpls, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth, view_distance};
@@ -67,7 +73,7 @@ FrameOutput ManyLightMethod::render(const RenderContext& ctx, StageTimer& timer)
 
   const bool own_direct = sampler_->estimates_direct() && !restir_direct(ctx.options);
   const PathConfig direct_pass = many_light_direct_config(
-      own_direct || restir_direct(ctx.options), ctx.options.diffuse_only, vpl_params_.clamp_compensation ? vpl_params_.vpl_max_bounces : 0,
+      own_direct || restir_direct(ctx.options), ctx.options.diffuse_only, vpl_params_.clamp_compensation ? vpl_params_.light_bounces() : 0,
       vpl_params_.vpl_min_bounces, vpl_stats.clamp_distance, vpl_stats.clamp_per_depth);
   Accumulators acc;
   const int spp = ctx.options.spp;

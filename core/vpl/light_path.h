@@ -17,6 +17,7 @@
 #include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
 #include "core/vpl/light_path_layout.h"
+#include "core/vpl/vpl_albedo.h"
 
 #if !defined(VPL_CTX_PARAM) || !defined(VPL_CTX) || !defined(VPL_DEPOSIT)
 #error "define the VPL_* hooks before including core/vpl/light_path.h"
@@ -30,12 +31,6 @@ SST_FUNC vec2 light_path_next_2d(SST_INOUT(HashRng) rng) {
   float y = hash_rng_next(rng);
   float x = hash_rng_next(rng);
   return vec2(x, y);
-}
-
-// The albedo a VPL reflects with: the diffuse lobe's (all of the base colour when diffuse_only).
-SST_FUNC vec3 vpl_albedo(SST_IN(Surface) s, bool diffuse_only) {
-  SST_PRECISE vec3 a = (1.0f - s.metallic) * s.base_color;
-  return diffuse_only ? s.base_color : a;
 }
 
 // Light path `path` (directional lights aiming at `focus`): its VPLs through VPL_DEPOSIT; returns

@@ -155,6 +155,20 @@ void validate(const VplParams& p) {
     throw Error("clamp_fraction must be a finite number >= 0 (got " + std::to_string(p.clamp_fraction) + ")");
   if (!(p.directional_focus >= 0.0f) || !std::isfinite(p.directional_focus))
     throw Error("directional_focus must be a finite number >= 0 (got " + std::to_string(p.directional_focus) + ")");
+  if (p.vpl_source != "paths" && p.vpl_source != "brsm")
+    throw Error("vpl_source must be paths or brsm (got '" + p.vpl_source + "')");
+  if (p.brsm_resolution < 2 || p.brsm_resolution > 4096 || (p.brsm_resolution & (p.brsm_resolution - 1)) != 0)
+    throw Error("brsm_resolution must be a power of two in 2..4096 (got " + std::to_string(p.brsm_resolution) + ")");
+  if (p.brsm_maps < 1 || p.brsm_maps > 4096)
+    throw Error("brsm_maps must be in 1..4096 (got " + std::to_string(p.brsm_maps) + ")");
+  if (!(p.brsm_gbuffer_scale > 0.0f && p.brsm_gbuffer_scale <= 1.0f))
+    throw Error("brsm_gbuffer_scale must be in (0, 1] (got " + std::to_string(p.brsm_gbuffer_scale) + ")");
+  if (p.brsm_gbuffer_samples < 0 || p.brsm_gbuffer_samples > 1024)
+    throw Error("brsm_gbuffer_samples must be in 0..1024 (got " + std::to_string(p.brsm_gbuffer_samples) + ")");
+  if (!(p.brsm_radius > 0.0f) || !std::isfinite(p.brsm_radius))
+    throw Error("brsm_radius must be a finite number > 0 (got " + std::to_string(p.brsm_radius) + ")");
+  if (!(p.brsm_power_fraction >= 0.0f && p.brsm_power_fraction <= 1.0f))
+    throw Error("brsm_power_fraction must be in [0, 1] (got " + std::to_string(p.brsm_power_fraction) + ")");
   if (p.clamp_relative_to != "camera_distance" && p.clamp_relative_to != "vpl_bounds")
     throw Error("clamp_relative_to must be camera_distance or vpl_bounds (got '" + p.clamp_relative_to + "')");
 }
@@ -168,16 +182,25 @@ void set_clamp(const VplParams& p, const VplSet& vpls, const Scene& scene, VplSt
 nlohmann::json to_json(const VplStats& s) {
   nlohmann::json intensity = nlohmann::json::array();
   for (const dvec3& i : s.intensity_per_bounce) intensity.push_back({i.x, i.y, i.z});
-  return {{"paths", s.paths},
-          {"paths_traced", s.paths_traced},
-          {"vpls", s.vpls},
-          {"rays", s.rays},
-          {"ms", s.ms},
-          {"path_limit_reached", s.path_limit_reached},
-          {"clamp_distance", s.clamp_distance},
-          {"clamp_per_depth", s.clamp_per_depth},
-          {"vpls_per_bounce", s.vpls_per_bounce},
-          {"intensity_per_bounce", intensity}};
+  nlohmann::json j = {{"source", s.source},
+                      {"paths", s.paths},
+                      {"paths_traced", s.paths_traced},
+                      {"vpls", s.vpls},
+                      {"rays", s.rays},
+                      {"ms", s.ms},
+                      {"path_limit_reached", s.path_limit_reached},
+                      {"clamp_distance", s.clamp_distance},
+                      {"clamp_per_depth", s.clamp_per_depth},
+                      {"vpls_per_bounce", s.vpls_per_bounce},
+                      {"intensity_per_bounce", intensity}};
+  if (s.source == "brsm") {
+    nlohmann::json stages = nlohmann::json::object();
+    for (const auto& [name, ms] : s.stage_ms) stages[name] = ms;
+    j["maps"] = s.maps;
+    j["pvpls"] = s.pvpls;
+    j["stage_ms"] = stages;
+  }
+  return j;
 }
 
 VplSet generate_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,

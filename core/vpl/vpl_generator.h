@@ -21,8 +21,9 @@
 // With interpolated (shading) normals, the adjoint shading-normal correction of light tracing is
 // not applied: exact for flat-shaded geometry, a small bias on smooth-shaded meshes.
 #pragma once
-#include <string>
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/accel/embree_accel.h"
@@ -38,6 +39,7 @@ namespace sst {
 inline constexpr uint64_t kMaxPathsPerVpl = 64;
 
 struct VplParams {
+  std::string vpl_source = "paths";
   int vpls = 100000;
   int vpl_max_bounces = 8;
   int vpl_min_bounces = 3;
@@ -45,10 +47,21 @@ struct VplParams {
   std::string clamp_relative_to = "camera_distance";
   bool clamp_compensation = true;
   float directional_focus = 4.0f;
+  int brsm_resolution = 256;
+  int brsm_maps = 8;
+  float brsm_gbuffer_scale = 0.25f;
+  int brsm_gbuffer_samples = 8;
+  float brsm_radius = 0.25f;
+  bool brsm_filter = true;
+  float brsm_power_fraction = 0.1f;
   std::string export_vpls;
 
   template <class V>
   void visit(V&& v) {
+    v("vpl_source", vpl_source,
+      "where the VPLs come from: paths (instant-radiosity light paths, every bounce) or brsm (one bidirectional "
+      "reflective shadow map per light, the hybrid thesis's: one-bounce VPLs drawn where the camera will see their "
+      "light; docs/design/brsm.md)");
     v("vpls", vpls,
       "number of virtual point lights: light paths are traced in order until exactly this many are deposited");
     v("vpl_max_bounces", vpl_max_bounces, "surface hits per light path that deposit a VPL (1: one-bounce GI)");
@@ -68,16 +81,43 @@ struct VplParams {
       "directional lights start half of their light paths on a disc around the camera of this many times the median "
       "distance to what it sees, the rest on discs 4x, 16x, ... as wide and the whole scene's (unbiased either way; 0: "
       "the whole scene's only, as before), so a sunlit room inside a large landscape still gets VPLs");
+    v("brsm_resolution", brsm_resolution,
+      "brsm: texels per side of each map (a power of two, 2..4096): one light ray and one potential VPL per texel");
+    v("brsm_maps", brsm_maps,
+      "brsm: the most maps; with more lights, consecutive lights of the power distribution share a map (each map "
+      "holds about the same power, and its VPL count is in proportion to the power it holds)");
+    v("brsm_gbuffer_scale", brsm_gbuffer_scale,
+      "brsm: the camera G-buffer that weighs the potential VPLs, as a fraction of the image's resolution (0..1]");
+    v("brsm_gbuffer_samples", brsm_gbuffer_samples,
+      "brsm: G-buffer samples per potential VPL, at random directions and 1/r^2-distributed distances around it (0: "
+      "weigh by power alone)");
+    v("brsm_radius", brsm_radius,
+      "brsm: the farthest G-buffer sample from a potential VPL, as a fraction of its distance to the camera; also "
+      "the distance below which the filter treats two potential VPLs as one surface");
+    v("brsm_filter", brsm_filter,
+      "brsm: filter the weights with a 5x5 kernel over similar potential VPLs (normals within 25 degrees, closer "
+      "than brsm_radius), the thesis's edge-aware filter");
+    v("brsm_power_fraction", brsm_power_fraction,
+      "brsm: the share of each map's draws that follows the potential VPLs' power alone instead of their weight, "
+      "so that light the weights miss is still drawn and the set stays unbiased (0: the thesis's weights only, "
+      "biased where they are 0)");
     v("export_vpls", export_vpls,
       "write the VPL set to this PLY point cloud (position, normal, intensity) after generation (empty: don't)");
   }
+
+  // The surface hits the set's light has made, at most: BRSM's VPLs hold one-bounce light only.
+  // The clamp's compensation paths stop there too, so that they add back only what the set holds.
+  int light_bounces() const { return vpl_source == "brsm" ? 1 : vpl_max_bounces; }
 };
 
 // Throws sst::Error naming the parameter when a value is impossible.
 void validate(const VplParams& params);
 
 struct VplStats {
-  uint64_t paths = 0;          // P: paths the set represents (intensities are divided by it)
+  std::string source = "paths";  // VplParams::vpl_source
+  uint64_t paths = 0;          // P: paths the set represents (intensities are divided by it); brsm: texels
+  uint64_t pvpls = 0;          // brsm: texels with a potential VPL
+  uint64_t maps = 0;           // brsm: maps
   uint64_t paths_traced = 0;   // including paths traced past the last one used
   uint64_t vpls = 0;           // deposited (== the set's size)
   uint64_t rays = 0;           // closest-hit rays of all traced paths
@@ -90,6 +130,8 @@ struct VplStats {
   // Per surface hit (index 0 = first hit = one-bounce VPLs): VPL count and summed intensity.
   std::vector<uint64_t> vpls_per_bounce;
   std::vector<dvec3> intensity_per_bounce;
+  // brsm: wall time of each stage (gbuffer, texels, filter, mip, warp), summed over the maps.
+  std::vector<std::pair<std::string, double>> stage_ms;
 };
 
 // The clamp of `vpls` (VplStats::clamp_distance and clamp_per_depth) as `p` defines it.

@@ -163,6 +163,26 @@ TEST(VulkanBackend, EveryMethodMatchesTheCpuOnTheBreakfastRoom) {
   for (const Case& c : cases()) expect_backends_agree(scene, c, c.real_scene);
 }
 
+// BRSM VPLs (vpl_source brsm, gpu/brsm_pass.h) give the CPU's images: on the Cornell box (an
+// emissive quad) for the methods that differ in how they read a VPL set (slc walks a tree of it,
+// sst its substitutes, hybrid shares cuts), on the breakfast room (a sun, the thesis's light) and
+// on a scene of many lights of every kind, where lights share maps. (Every method on every scene:
+// 190 s on two cores, for the same VPL sets.)
+TEST(VulkanBackend, BrsmVplsGiveTheCpuImages) {
+  SKIP_WITHOUT_GPU("brsm");
+  auto brsm = [](const std::string& method) {
+    return Case{method,
+                {{"vpl_source", "brsm"}, {"vpls", 2048}, {"brsm_resolution", 64}},
+                Agreement::exact,
+                Agreement::exact};
+  };
+  Scene cornell = load_default_scene();
+  for (const char* m : {"slc", "sst", "hybrid"}) expect_backends_agree(cornell, brsm(m), Agreement::exact);
+  expect_backends_agree(test::many_lights(8, 300, 3, 3, true), brsm("slc"), Agreement::exact);
+  auto path = test::shared_scene("breakfast-room/breakfast-room.gltf");
+  if (!path.empty()) expect_backends_agree(load_gltf(path.string()), brsm("slc"), Agreement::exact);
+}
+
 // Against the default CPU backend (Embree): different barycentrics and edge decisions move VPLs
 // and paths, so agreement is statistical there.
 TEST(VulkanBackend, SstAgreesStatisticallyWithTheEmbreeCpu) {

@@ -1,0 +1,214 @@
+#include "core/brsm/brsm_generator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+
+#include "core/shading/surface.h"
+
+namespace sst {
+
+// The CPU's buffers behind the BRSM_* hooks.
+struct BrsmBuffers {
+  const BrsmGSample* gbuffer;
+  const BrsmTexel* texels;
+  const vec2* mip;
+};
+
+}  // namespace sst
+
+#define BRSM_CTX_PARAM const ::sst::BrsmBuffers &brsm,
+#define BRSM_CTX brsm,
+#define BRSM_GSAMPLE(i) brsm.gbuffer[i]
+#define BRSM_TEXEL(i) brsm.texels[i]
+#define BRSM_MIP(i) brsm.mip[i]
+#include "core/brsm/brsm.h"
+
+namespace sst {
+namespace {
+
+template <class F>
+void parallel_each(uint32_t count, F&& f) {
+  tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, 256), [&](const tbb::blocked_range<uint32_t>& r) {
+    for (uint32_t i = r.begin(); i != r.end(); ++i) f(i);
+  });
+}
+
+// Adds the wall time of `f` to the stage's entry of `stage_ms`.
+template <class F>
+void timed(std::vector<std::pair<std::string, double>>& stage_ms, const char* stage, F&& f) {
+  auto start = std::chrono::steady_clock::now();
+  f();
+  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (auto& [name, total] : stage_ms)
+    if (name == stage) {
+      total += ms;
+      return;
+    }
+  stage_ms.emplace_back(stage, ms);
+}
+
+}  // namespace
+
+std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_maps) {
+  const std::vector<glsl::LightCdfEntry>& dist = lights.distribution;
+  const uint32_t n = uint32_t(dist.size());
+  uint32_t emitting = 0;
+  double total = 0.0;
+  for (const auto& e : dist)
+    if (e.pmf > 0.0f) {
+      ++emitting;
+      total += double(e.pmf);
+    }
+  if (emitting == 0 || vpls < 1) return {};
+  const uint32_t limit = uint32_t(std::min(max_maps, vpls));
+  std::vector<std::pair<uint32_t, uint32_t>> ranges;
+  if (emitting <= limit) {
+    for (uint32_t i = 0; i < n; ++i)
+      if (dist[i].pmf > 0.0f) ranges.emplace_back(i, i + 1);
+  } else {
+    // Runs of consecutive entries, each closed where the running power passes the next of
+    // `limit` equal shares.
+    double acc = 0.0;
+    uint32_t first = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+      acc += double(dist[i].pmf);
+      bool last = i + 1 == n;
+      if (last || (ranges.size() + 1 < limit && acc >= total * double(ranges.size() + 1) / double(limit))) {
+        ranges.emplace_back(first, i + 1);
+        first = i + 1;
+      }
+    }
+  }
+  std::vector<BrsmMap> maps;
+  std::vector<double> shares;
+  for (auto [first, end] : ranges) {
+    double share = 0.0;
+    for (uint32_t i = first; i < end; ++i) share += double(dist[i].pmf);
+    if (!(share > 0.0)) continue;
+    BrsmMap m{};
+    m.first_light = first;
+    m.end_light = end;
+    m.cdf_start = first > 0 ? dist[first - 1].cdf_hi + dist[first - 1].cdf_lo : 0.0f;
+    m.pmf_sum = float(share);
+    maps.push_back(m);
+    shares.push_back(share / total);
+  }
+  // One VPL each, the rest in proportion to power by largest remainders.
+  const uint32_t rest = uint32_t(vpls) - uint32_t(maps.size());
+  std::vector<double> remainder(maps.size());
+  uint32_t given = 0;
+  for (size_t k = 0; k < maps.size(); ++k) {
+    double ideal = double(rest) * shares[k];
+    uint32_t whole = uint32_t(std::floor(ideal));
+    maps[k].vpl_count = 1 + whole;
+    remainder[k] = ideal - double(whole);
+    given += whole;
+  }
+  std::vector<size_t> order(maps.size());
+  std::iota(order.begin(), order.end(), size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return remainder[a] > remainder[b]; });
+  for (size_t k = 0; given < rest; ++k, ++given) ++maps[order[k % order.size()]].vpl_count;
+  uint32_t offset = 0;
+  for (BrsmMap& m : maps) {
+    m.vpl_offset = offset;
+    offset += m.vpl_count;
+  }
+  return maps;
+}
+
+BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const ViewParams& view, uint32_t seed,
+                           bool diffuse_only, const EmissionFocus& focus) {
+  BrsmSettings s{};
+  s.view = view;
+  s.focus_center = focus.center;
+  s.focus_radius = focus.radius;
+  s.seed = seed;
+  s.resolution = uint32_t(params.brsm_resolution);
+  s.gbuffer_width = std::max(1u, uint32_t(std::lround(double(view.width) * params.brsm_gbuffer_scale)));
+  s.gbuffer_height = std::max(1u, uint32_t(std::lround(double(view.height) * params.brsm_gbuffer_scale)));
+  s.gbuffer_samples = uint32_t(params.brsm_gbuffer_samples);
+  s.radius = params.brsm_radius;
+  s.power_fraction = params.brsm_power_fraction;
+  s.edge_filter = params.brsm_filter ? 1u : 0u;
+  s.diffuse_only = diffuse_only ? 1u : 0u;
+  s.ray_epsilon = scene_ray_epsilon(scene);
+  return s;
+}
+
+VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
+                          const VplParams& params, const ViewParams& view, uint32_t seed, bool diffuse_only,
+                          VplStats* stats, const EmissionFocus& focus) {
+  validate(params);
+  auto start = std::chrono::steady_clock::now();
+  VplStats local;
+  VplStats& st = stats ? *stats : local;
+  st = VplStats{};
+  st.source = "brsm";
+  const PackedLights& packed = lights.packed();
+  const std::vector<BrsmMap> maps = brsm_maps(packed, params.vpls, params.brsm_maps);
+  const BrsmSettings s = brsm_settings(scene, params, view, seed, diffuse_only, focus);
+  const uint32_t res = s.resolution;
+  const uint32_t texel_count = res * res;
+  const uint32_t top = brsm_top_level(res);
+
+  std::vector<BrsmGSample> gbuffer(size_t(s.gbuffer_width) * s.gbuffer_height);
+  std::vector<BrsmTexel> texels(maps.empty() ? 0 : texel_count);
+  std::vector<vec2> mip(maps.empty() ? 0 : brsm_mip_offset(res, top + 1));
+  const BrsmBuffers buffers{gbuffer.data(), texels.data(), mip.data()};
+  VplSet drawn(size_t(maps.empty() ? 0 : params.vpls));
+  if (!maps.empty())
+    timed(st.stage_ms, "gbuffer", [&] {
+      parallel_each(uint32_t(gbuffer.size()), [&](uint32_t i) {
+        gbuffer[i] = brsm_gbuffer_sample(scene, accel, s, i % s.gbuffer_width, i / s.gbuffer_width);
+      });
+    });
+  for (uint32_t m = 0; m < uint32_t(maps.size()); ++m) {
+    const BrsmMap& map = maps[m];
+    timed(st.stage_ms, "texels", [&] {
+      parallel_each(texel_count, [&](uint32_t i) { texels[i] = brsm_texel(scene, packed, accel, buffers, s, map, m, i); });
+    });
+    timed(st.stage_ms, "filter", [&] {
+      parallel_each(texel_count, [&](uint32_t i) { mip[i] = brsm_filtered(buffers, s, i); });
+    });
+    timed(st.stage_ms, "mip", [&] {
+      for (uint32_t level = 1; level <= top; ++level) {
+        const uint32_t base = brsm_mip_offset(res, level), side = res >> level;
+        parallel_each(side * side, [&](uint32_t i) { mip[base + i] = brsm_mip_sum(buffers, res, level, i); });
+      }
+    });
+    timed(st.stage_ms, "warp", [&] {
+      parallel_each(map.vpl_count, [&](uint32_t i) { drawn[map.vpl_offset + i] = brsm_warp(buffers, s, map, m, i); });
+    });
+    for (const BrsmTexel& t : texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
+  }
+  VplSet vpls = brsm_compact(drawn, st);
+  st.maps = maps.size();
+  st.paths = uint64_t(maps.size()) * texel_count;
+  st.paths_traced = st.paths;
+  st.rays = maps.empty() ? 0 : gbuffer.size() + st.paths;
+  set_clamp(params, vpls, scene, st);
+  st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return vpls;
+}
+
+VplSet brsm_compact(const VplSet& drawn, VplStats& stats) {
+  VplSet vpls;
+  vpls.reserve(drawn.size());
+  dvec3 sum(0.0);
+  for (const Vpl& v : drawn)
+    if (max_component(v.intensity) > 0.0f) {
+      vpls.push_back(v);
+      sum += dvec3(v.intensity);
+    }
+  stats.vpls = vpls.size();
+  stats.vpls_per_bounce = {vpls.size()};
+  stats.intensity_per_bounce = {sum};
+  return vpls;
+}
+
+}  // namespace sst

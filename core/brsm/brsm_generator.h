@@ -1,0 +1,41 @@
+// BRSM VPL generation on the CPU (VplParams::vpl_source = brsm; the algorithm is core/brsm/brsm.h,
+// docs/design/brsm.md): the camera's G-buffer, then per map its texels, their filtered weights,
+// the mip chain and the warped draws, each stage a parallel loop over independent elements, so
+// the set is the same bits for any thread count and equals the GPU's (gpu/brsm_pass.h).
+//
+// The set has exactly `vpls` VPLs, map by map in the order of brsm_maps(), each map's in the order
+// of its Hammersley points. Its one-bounce light equals, in expectation, that of `paths` with
+// vpl_max_bounces 1; light that bounces more than once is not in it.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "core/accel/embree_accel.h"
+#include "core/lights/light_sampler.h"
+#include "core/scene/scene.h"
+#include "core/brsm/brsm_layout.h"
+#include "core/vpl/vpl.h"
+#include "core/vpl/vpl_generator.h"
+
+namespace sst {
+
+// The maps of a scene's lights, at most `max_maps` and at most `vpls`: one per light of nonzero
+// power when they are few enough, else runs of consecutive lights of about equal power. Each
+// map's VPL count is in proportion to its power (largest remainders, at least 1), summing to
+// `vpls`. Empty when no light emits.
+std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_maps);
+
+// The settings every stage reads, for both backends.
+BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const ViewParams& view, uint32_t seed,
+                           bool diffuse_only, const EmissionFocus& focus);
+
+// The drawn VPLs less those of zero intensity (drawn from a map whose texels all missed), in
+// order; fills stats' VPL count and per-bounce sums.
+VplSet brsm_compact(const VplSet& drawn, VplStats& stats);
+
+// Throws sst::Error when validate(params) does.
+VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
+                          const VplParams& params, const ViewParams& view, uint32_t seed, bool diffuse_only,
+                          VplStats* stats = nullptr, const EmissionFocus& focus = emission_focus_none());
+
+}  // namespace sst

@@ -1,0 +1,92 @@
+#include "gpu/brsm_pass.h"
+
+#include <chrono>
+#include <span>
+#include <vector>
+
+#include "core/accel/embree_accel.h"
+#include "core/brsm/brsm_generator.h"
+#include "core/vpl/light_path_layout.h"
+#include "gpu/compute_pipeline.h"
+
+namespace sst::gpu {
+namespace {
+
+constexpr uint32_t kGroupSize = 64;  // local_size_x of the shader
+
+uint32_t groups(uint32_t invocations) { return (invocations + kGroupSize - 1) / kGroupSize; }
+
+void add_stage_ms(VplStats& st, const char* stage, double ms) {
+  for (auto& [name, total] : st.stage_ms)
+    if (name == stage) {
+      total += ms;
+      return;
+    }
+  st.stage_ms.emplace_back(stage, ms);
+}
+
+}  // namespace
+
+VplSet generate_brsm_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene, const GpuBvh& bvh,
+                              const GpuLights& gpu_lights, const PackedLights& lights, const Scene& scene,
+                              const VplParams& params, const ViewParams& view, uint32_t seed, bool diffuse_only,
+                              VplStats* stats, const EmissionFocus& focus, VkAccelerationStructureKHR top_level) {
+  validate(params);
+  auto start = std::chrono::steady_clock::now();
+  VplStats local;
+  VplStats& st = stats ? *stats : local;
+  st = VplStats{};
+  st.source = "brsm";
+  const std::vector<BrsmMap> maps = brsm_maps(lights, params.vpls, params.brsm_maps);
+  const BrsmSettings s = brsm_settings(scene, params, view, seed, diffuse_only, focus);
+  const uint32_t res = s.resolution, texel_count = res * res, top = brsm_top_level(res);
+  VplSet drawn;
+  uint64_t gbuffer_size = uint64_t(s.gbuffer_width) * s.gbuffer_height;
+  if (!maps.empty()) {
+    auto settings = upload_buffer(context, std::span<const BrsmSettings>(&s, 1), "BRSM settings");
+    auto map_buffer = upload_buffer(context, maps, "BRSM maps");
+    auto gbuffer = make_buffer(context, size_t(gbuffer_size), sizeof(BrsmGSample), "BRSM G-buffer");
+    auto texels = make_buffer(context, texel_count, sizeof(BrsmTexel), "BRSM texels");
+    auto mip = make_buffer(context, brsm_mip_offset(res, top + 1), 2 * sizeof(float), "BRSM mip chain");
+    auto slots = make_buffer(context, size_t(params.vpls), sizeof(VplSlot), "BRSM VPLs");
+    std::vector<const GpuBuffer*> buffers = gpu_scene.buffers();
+    for (const GpuBuffer* b : bvh.buffers()) buffers.push_back(b);
+    for (const auto* b : {&settings, &map_buffer, &gbuffer, &texels, &mip, &slots}) buffers.push_back(b->get());
+    for (const GpuBuffer* b : gpu_lights.buffers()) buffers.push_back(b);
+    ComputePipeline pipeline(context, "brsm", uint32_t(buffers.size()), sizeof(BrsmPush), {}, top_level);
+    BrsmPush push{};
+    push.stage = BRSM_STAGE_GBUFFER;
+    add_stage_ms(st, "gbuffer", pipeline.dispatch(buffers, &push, groups(uint32_t(gbuffer_size))));
+    for (uint32_t m = 0; m < uint32_t(maps.size()); ++m) {
+      push.map_index = m;
+      push.stage = BRSM_STAGE_TEXELS;
+      add_stage_ms(st, "texels", pipeline.dispatch(buffers, &push, groups(texel_count)));
+      push.stage = BRSM_STAGE_FILTER;
+      add_stage_ms(st, "filter", pipeline.dispatch(buffers, &push, groups(texel_count)));
+      push.stage = BRSM_STAGE_MIP;
+      for (uint32_t level = 1; level <= top; ++level) {
+        push.level = level;
+        add_stage_ms(st, "mip", pipeline.dispatch(buffers, &push, groups((res >> level) * (res >> level))));
+      }
+      push.stage = BRSM_STAGE_WARP;
+      add_stage_ms(st, "warp", pipeline.dispatch(buffers, &push, groups(maps[m].vpl_count)));
+      std::vector<BrsmTexel> map_texels(texel_count);
+      texels->download(std::span<BrsmTexel>(map_texels));
+      for (const BrsmTexel& t : map_texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
+    }
+    std::vector<VplSlot> out(size_t(params.vpls));
+    slots->download(std::span<VplSlot>(out));
+    drawn.reserve(out.size());
+    for (const VplSlot& v : out) drawn.push_back({v.position, v.normal, v.intensity});
+  }
+  VplSet vpls = brsm_compact(drawn, st);
+  st.maps = maps.size();
+  st.paths = uint64_t(maps.size()) * texel_count;
+  st.paths_traced = st.paths;
+  st.rays = maps.empty() ? 0 : gbuffer_size + st.paths;
+  set_clamp(params, vpls, scene, st);
+  st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return vpls;
+}
+
+}  // namespace sst::gpu

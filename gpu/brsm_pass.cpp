@@ -16,15 +16,6 @@ constexpr uint32_t kGroupSize = 64;  // local_size_x of the shader
 
 uint32_t groups(uint32_t invocations) { return (invocations + kGroupSize - 1) / kGroupSize; }
 
-void add_stage_ms(VplStats& st, const char* stage, double ms) {
-  for (auto& [name, total] : st.stage_ms)
-    if (name == stage) {
-      total += ms;
-      return;
-    }
-  st.stage_ms.emplace_back(stage, ms);
-}
-
 }  // namespace
 
 VplSet generate_brsm_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene, const GpuBvh& bvh,

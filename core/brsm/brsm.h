@@ -77,16 +77,33 @@ SST_FUNC BrsmGSample brsm_gbuffer_sample(SCENE_CTX_PARAM RAY_CTX_PARAM SST_IN(Br
   return g;
 }
 
+// The light a pVPL at p with normal n would send to G-buffer sample g, per unit of its
+// luminance, without occlusion; distances below sqrt(floor2) count as that.
+SST_FUNC float brsm_light_at(SST_IN(BrsmGSample) g, vec3 p, vec3 n, float floor2) {
+  if (!(g.hit > 0.0f)) return 0.0f;
+  SST_PRECISE vec3 d = g.position - p;
+  SST_PRECISE float d2 = dot3(d, d);
+  if (!(d2 > 0.0f)) return 0.0f;
+  SST_PRECISE float inv_d = 1.0f / sqrt(d2);
+  SST_PRECISE float cos_vpl = dot3(n, d) * inv_d;
+  SST_PRECISE float cos_surface = -dot3(g.normal, d) * inv_d;
+  if (!(cos_vpl > 0.0f) || !(cos_surface > 0.0f)) return 0.0f;
+  SST_PRECISE float light = luminance(g.albedo) * kInvPi * cos_vpl * cos_surface / max(d2, floor2);
+  return light;
+}
+
 // The expected contribution of a pVPL (position p, normal n, luminance `power`) to what the
-// camera sees near it, without occlusion (the thesis's 4.1.1 with its sampling around the pVPL in
-// 3D): the mean over the G-buffer samples of the diffuse light it would send there.
+// camera sees, without occlusion: `power` times the mean light it would send to
+// s.gbuffer_samples G-buffer samples near it (the thesis's 4.1.1, with its sampling around the
+// pVPL in 3D) plus the mean over s.screen_samples G-buffer pixels drawn uniformly, which sees the
+// pVPLs that light only distant surfaces (0 samples: the thesis's weight).
 SST_FUNC float brsm_importance(BRSM_CTX_PARAM SST_IN(BrsmSettings) s, vec3 p, vec3 n, float power,
                                SST_INOUT(HashRng) rng) {
   float to_eye = length3(p - s.view.eye);
   SST_PRECISE float r_max = s.radius * to_eye;
   SST_PRECISE float r_min = r_max / kBrsmInnerRadius;
   SST_PRECISE float floor2 = r_min * r_min;
-  float sum = 0.0f;
+  float near_sum = 0.0f;
   for (uint k = 0u; k < s.gbuffer_samples; ++k) {
     vec2 u_dir = brsm_next_2d(rng);
     float u_r = hash_rng_next(rng);
@@ -100,22 +117,21 @@ SST_FUNC float brsm_importance(BRSM_CTX_PARAM SST_IN(BrsmSettings) s, vec3 p, ve
     SST_PRECISE float gx = floor(pixel.x * float(s.gbuffer_width) / float(s.view.width));
     SST_PRECISE float gy = floor(pixel.y * float(s.gbuffer_height) / float(s.view.height));
     if (!(gx >= 0.0f && gy >= 0.0f && gx < float(s.gbuffer_width) && gy < float(s.gbuffer_height))) continue;
-    BrsmGSample g = BRSM_GSAMPLE(uint(gy) * s.gbuffer_width + uint(gx));
-    if (!(g.hit > 0.0f)) continue;
-    SST_PRECISE vec3 d = g.position - p;
-    SST_PRECISE float d2 = dot3(d, d);
-    if (!(d2 > 0.0f)) continue;
-    SST_PRECISE float inv_d = 1.0f / sqrt(d2);
-    SST_PRECISE float cos_vpl = dot3(n, d) * inv_d;
-    SST_PRECISE float cos_surface = -dot3(g.normal, d) * inv_d;
-    if (!(cos_vpl > 0.0f) || !(cos_surface > 0.0f)) continue;
-    SST_PRECISE float term = luminance(g.albedo) * kInvPi * cos_vpl * cos_surface / max(d2, floor2);
-    SST_PRECISE float summed = sum + term;
-    sum = summed;
+    SST_PRECISE float summed = near_sum + brsm_light_at(BRSM_GSAMPLE(uint(gy) * s.gbuffer_width + uint(gx)), p, n, floor2);
+    near_sum = summed;
   }
-  if (s.gbuffer_samples == 0u) return power;  // no G-buffer: power alone
-  SST_PRECISE float mean = power * sum / float(s.gbuffer_samples);
-  return mean;
+  float screen_sum = 0.0f;
+  uint pixels = s.gbuffer_width * s.gbuffer_height;
+  for (uint k = 0u; k < s.screen_samples; ++k) {
+    uint i = min(uint(hash_rng_next(rng) * float(pixels)), pixels - 1u);
+    SST_PRECISE float summed = screen_sum + brsm_light_at(BRSM_GSAMPLE(i), p, n, floor2);
+    screen_sum = summed;
+  }
+  if (s.gbuffer_samples == 0u && s.screen_samples == 0u) return power;  // no G-buffer: power alone
+  SST_PRECISE float near_mean = s.gbuffer_samples > 0u ? near_sum / float(s.gbuffer_samples) : 0.0f;
+  SST_PRECISE float screen_mean = s.screen_samples > 0u ? screen_sum / float(s.screen_samples) : 0.0f;
+  SST_PRECISE float weight = power * (near_mean + screen_mean);
+  return weight;
 }
 
 // Texel `texel` of map `map` (number `map_index`): its light ray's first diffuse hit as a pVPL

@@ -38,18 +38,12 @@ void parallel_each(uint32_t count, F&& f) {
   });
 }
 
-// Adds the wall time of `f` to the stage's entry of `stage_ms`.
+// Adds the wall time of `f` to stage `stage` of `stats`.
 template <class F>
-void timed(std::vector<std::pair<std::string, double>>& stage_ms, const char* stage, F&& f) {
+void timed(VplStats& stats, const char* stage, F&& f) {
   auto start = std::chrono::steady_clock::now();
   f();
-  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  for (auto& [name, total] : stage_ms)
-    if (name == stage) {
-      total += ms;
-      return;
-    }
-  stage_ms.emplace_back(stage, ms);
+  add_stage_ms(stats, stage, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace
@@ -132,6 +126,7 @@ BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const Vi
   s.gbuffer_width = std::max(1u, uint32_t(std::lround(double(view.width) * params.brsm_gbuffer_scale)));
   s.gbuffer_height = std::max(1u, uint32_t(std::lround(double(view.height) * params.brsm_gbuffer_scale)));
   s.gbuffer_samples = uint32_t(params.brsm_gbuffer_samples);
+  s.screen_samples = uint32_t(params.brsm_screen_samples);
   s.radius = params.brsm_radius;
   s.power_fraction = params.brsm_power_fraction;
   s.edge_filter = params.brsm_filter ? 1u : 0u;
@@ -162,26 +157,26 @@ VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const Li
   const BrsmBuffers buffers{gbuffer.data(), texels.data(), mip.data()};
   VplSet drawn(size_t(maps.empty() ? 0 : params.vpls));
   if (!maps.empty())
-    timed(st.stage_ms, "gbuffer", [&] {
+    timed(st, "gbuffer", [&] {
       parallel_each(uint32_t(gbuffer.size()), [&](uint32_t i) {
         gbuffer[i] = brsm_gbuffer_sample(scene, accel, s, i % s.gbuffer_width, i / s.gbuffer_width);
       });
     });
   for (uint32_t m = 0; m < uint32_t(maps.size()); ++m) {
     const BrsmMap& map = maps[m];
-    timed(st.stage_ms, "texels", [&] {
+    timed(st, "texels", [&] {
       parallel_each(texel_count, [&](uint32_t i) { texels[i] = brsm_texel(scene, packed, accel, buffers, s, map, m, i); });
     });
-    timed(st.stage_ms, "filter", [&] {
+    timed(st, "filter", [&] {
       parallel_each(texel_count, [&](uint32_t i) { mip[i] = brsm_filtered(buffers, s, i); });
     });
-    timed(st.stage_ms, "mip", [&] {
+    timed(st, "mip", [&] {
       for (uint32_t level = 1; level <= top; ++level) {
         const uint32_t base = brsm_mip_offset(res, level), side = res >> level;
         parallel_each(side * side, [&](uint32_t i) { mip[base + i] = brsm_mip_sum(buffers, res, level, i); });
       }
     });
-    timed(st.stage_ms, "warp", [&] {
+    timed(st, "warp", [&] {
       parallel_each(map.vpl_count, [&](uint32_t i) { drawn[map.vpl_offset + i] = brsm_warp(buffers, s, map, m, i); });
     });
     for (const BrsmTexel& t : texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;

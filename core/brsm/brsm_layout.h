@@ -87,8 +87,8 @@ struct BrsmSettings {
   uint edge_filter;     // VplParams::brsm_filter
   uint diffuse_only;
   float ray_epsilon;    // scene_ray_epsilon(scene)
+  uint screen_samples;  // VplParams::brsm_screen_samples
   uint pad0;
-  uint pad1;
 };
 
 // The push constants of gpu/shaders/brsm.comp: which stage of which map.

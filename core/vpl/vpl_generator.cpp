@@ -165,6 +165,8 @@ void validate(const VplParams& p) {
     throw Error("brsm_gbuffer_scale must be in (0, 1] (got " + std::to_string(p.brsm_gbuffer_scale) + ")");
   if (p.brsm_gbuffer_samples < 0 || p.brsm_gbuffer_samples > 1024)
     throw Error("brsm_gbuffer_samples must be in 0..1024 (got " + std::to_string(p.brsm_gbuffer_samples) + ")");
+  if (p.brsm_screen_samples < 0 || p.brsm_screen_samples > 1024)
+    throw Error("brsm_screen_samples must be in 0..1024 (got " + std::to_string(p.brsm_screen_samples) + ")");
   if (!(p.brsm_radius > 0.0f) || !std::isfinite(p.brsm_radius))
     throw Error("brsm_radius must be a finite number > 0 (got " + std::to_string(p.brsm_radius) + ")");
   if (!(p.brsm_power_fraction >= 0.0f && p.brsm_power_fraction <= 1.0f))
@@ -177,6 +179,15 @@ void set_clamp(const VplParams& p, const VplSet& vpls, const Scene& scene, VplSt
   const bool per_depth = p.clamp_relative_to == "camera_distance";
   st.clamp_distance = per_depth ? 0.0f : vpl_clamp_distance(p.clamp_fraction, vpls, scene);
   st.clamp_per_depth = per_depth ? p.clamp_fraction : 0.0f;
+}
+
+void add_stage_ms(VplStats& stats, const char* stage, double ms) {
+  for (auto& [name, total] : stats.stage_ms)
+    if (name == stage) {
+      total += ms;
+      return;
+    }
+  stats.stage_ms.emplace_back(stage, ms);
 }
 
 nlohmann::json to_json(const VplStats& s) {

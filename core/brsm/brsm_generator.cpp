@@ -181,17 +181,13 @@ VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const Li
     });
     for (const BrsmTexel& t : texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
   }
-  VplSet vpls = brsm_compact(drawn, st);
-  st.maps = maps.size();
-  st.paths = uint64_t(maps.size()) * texel_count;
-  st.paths_traced = st.paths;
-  st.rays = maps.empty() ? 0 : gbuffer.size() + st.paths;
-  set_clamp(params, vpls, scene, st);
+  VplSet vpls = brsm_finish(drawn, maps.size(), s, params, scene, st);
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return vpls;
 }
 
-VplSet brsm_compact(const VplSet& drawn, VplStats& stats) {
+VplSet brsm_finish(const VplSet& drawn, size_t map_count, const BrsmSettings& settings, const VplParams& params,
+                   const Scene& scene, VplStats& stats) {
   VplSet vpls;
   vpls.reserve(drawn.size());
   dvec3 sum(0.0);
@@ -203,6 +199,11 @@ VplSet brsm_compact(const VplSet& drawn, VplStats& stats) {
   stats.vpls = vpls.size();
   stats.vpls_per_bounce = {vpls.size()};
   stats.intensity_per_bounce = {sum};
+  stats.maps = map_count;
+  stats.paths = uint64_t(map_count) * settings.resolution * settings.resolution;
+  stats.paths_traced = stats.paths;
+  stats.rays = map_count == 0 ? 0 : uint64_t(settings.gbuffer_width) * settings.gbuffer_height + stats.paths;
+  set_clamp(params, vpls, scene, stats);
   return vpls;
 }
 

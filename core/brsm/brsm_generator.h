@@ -29,9 +29,11 @@ std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_map
 BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const ViewParams& view, uint32_t seed,
                            bool diffuse_only, const EmissionFocus& focus);
 
-// The drawn VPLs less those of zero intensity (drawn from a map whose texels all missed), in
-// order; fills stats' VPL count and per-bounce sums.
-VplSet brsm_compact(const VplSet& drawn, VplStats& stats);
+// The set from the VPLs drawn from `map_count` maps of `settings`: those of zero intensity (drawn
+// from a map whose texels all missed) left out, in order; fills `stats` (VPL count, per-bounce
+// sums, maps, texels, rays, clamp) except stage and wall times.
+VplSet brsm_finish(const VplSet& drawn, size_t map_count, const BrsmSettings& settings, const VplParams& params,
+                   const Scene& scene, VplStats& stats);
 
 // Throws sst::Error when validate(params) does.
 VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,

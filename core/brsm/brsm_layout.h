@@ -1,8 +1,8 @@
 // BRSM VPL generation's data crossing the host/GPU boundary (core/brsm/brsm.h is the algorithm,
 // core/brsm/brsm_generator.cpp the CPU's schedule, gpu/brsm_pass.cpp and gpu/shaders/brsm.comp
 // the GPU's), defined once for C++ and GLSL.
-#ifndef SST_CORE_VPL_BRSM_LAYOUT_H
-#define SST_CORE_VPL_BRSM_LAYOUT_H
+#ifndef SST_CORE_BRSM_BRSM_LAYOUT_H
+#define SST_CORE_BRSM_BRSM_LAYOUT_H
 #include "core/math/cpu_gpu.h"
 #include "core/render/frame_layout.h"
 
@@ -110,4 +110,4 @@ static_assert(sizeof(sst::BrsmSettings) == 80 + 16 + 48);
 static_assert(sizeof(sst::BrsmPush) == 16);
 #endif
 
-#endif  // SST_CORE_VPL_BRSM_LAYOUT_H
+#endif  // SST_CORE_BRSM_BRSM_LAYOUT_H

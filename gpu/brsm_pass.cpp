@@ -22,14 +22,12 @@ VplSet generate_brsm_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_
                               const GpuLights& gpu_lights, const PackedLights& lights, const Scene& scene,
                               const VplParams& params, const ViewParams& view, uint32_t seed, bool diffuse_only,
                               VplStats* stats, const EmissionFocus& focus, VkAccelerationStructureKHR top_level) {
-  validate(params);
   auto start = std::chrono::steady_clock::now();
   VplStats local;
   VplStats& st = stats ? *stats : local;
-  st = VplStats{};
-  st.source = "brsm";
-  const std::vector<BrsmMap> maps = brsm_maps(lights, params.vpls, params.brsm_maps);
-  const BrsmSettings s = brsm_settings(scene, params, view, seed, diffuse_only, focus);
+  const BrsmPlan plan = brsm_plan(scene, lights, params, view, seed, diffuse_only, focus, st);
+  const std::vector<BrsmMap>& maps = plan.maps;
+  const BrsmSettings& s = plan.settings;
   const uint32_t res = s.resolution, texel_count = res * res, top = brsm_top_level(res);
   VplSet drawn;
   uint64_t gbuffer_size = uint64_t(s.gbuffer_width) * s.gbuffer_height;

@@ -115,8 +115,11 @@ std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_map
   return maps;
 }
 
-BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const ViewParams& view, uint32_t seed,
-                           bool diffuse_only, const EmissionFocus& focus) {
+BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplParams& params, const ViewParams& view,
+                   uint32_t seed, bool diffuse_only, const EmissionFocus& focus, VplStats& stats) {
+  validate(params);
+  stats = VplStats{};
+  stats.source = "brsm";
   BrsmSettings s{};
   s.view = view;
   s.focus_center = focus.center;
@@ -132,21 +135,19 @@ BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const Vi
   s.edge_filter = params.brsm_filter ? 1u : 0u;
   s.diffuse_only = diffuse_only ? 1u : 0u;
   s.ray_epsilon = scene_ray_epsilon(scene);
-  return s;
+  return {brsm_maps(lights, params.vpls, params.brsm_maps), s};
 }
 
 VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
                           const VplParams& params, const ViewParams& view, uint32_t seed, bool diffuse_only,
                           VplStats* stats, const EmissionFocus& focus) {
-  validate(params);
   auto start = std::chrono::steady_clock::now();
   VplStats local;
   VplStats& st = stats ? *stats : local;
-  st = VplStats{};
-  st.source = "brsm";
   const PackedLights& packed = lights.packed();
-  const std::vector<BrsmMap> maps = brsm_maps(packed, params.vpls, params.brsm_maps);
-  const BrsmSettings s = brsm_settings(scene, params, view, seed, diffuse_only, focus);
+  const BrsmPlan plan = brsm_plan(scene, packed, params, view, seed, diffuse_only, focus, st);
+  const std::vector<BrsmMap>& maps = plan.maps;
+  const BrsmSettings& s = plan.settings;
   const uint32_t res = s.resolution;
   const uint32_t texel_count = res * res;
   const uint32_t top = brsm_top_level(res);

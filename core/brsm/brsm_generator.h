@@ -25,9 +25,16 @@ namespace sst {
 // `vpls`. Empty when no light emits.
 std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_maps);
 
-// The settings every stage reads, for both backends.
-BrsmSettings brsm_settings(const Scene& scene, const VplParams& params, const ViewParams& view, uint32_t seed,
-                           bool diffuse_only, const EmissionFocus& focus);
+// What a frame's set is drawn from, for both backends: its maps and the settings every stage reads.
+struct BrsmPlan {
+  std::vector<BrsmMap> maps;
+  BrsmSettings settings;
+};
+
+// The plan of a frame (validate(params) first: sst::Error for impossible values); resets `stats`
+// to an empty BRSM record.
+BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplParams& params, const ViewParams& view,
+                   uint32_t seed, bool diffuse_only, const EmissionFocus& focus, VplStats& stats);
 
 // The set from the VPLs drawn from `map_count` maps of `settings`: those of zero intensity (drawn
 // from a map whose texels all missed) left out, in order; fills `stats` (VPL count, per-bounce

@@ -1,10 +1,10 @@
 #include "gpu/brsm_pass.h"
 
+#include <algorithm>
 #include <chrono>
 #include <span>
 #include <vector>
 
-#include "core/accel/embree_accel.h"
 #include "core/brsm/brsm_generator.h"
 #include "core/vpl/light_path_layout.h"
 #include "gpu/compute_pipeline.h"
@@ -12,9 +12,19 @@
 namespace sst::gpu {
 namespace {
 
-constexpr uint32_t kGroupSize = 64;  // local_size_x of the shader
+constexpr uint32_t kGroupSize = 64;     // local_size_x of the shader
+constexpr uint32_t kMaxGroups = 65535;  // the smallest maxComputeWorkGroupCount Vulkan allows
 
-uint32_t groups(uint32_t invocations) { return (invocations + kGroupSize - 1) / kGroupSize; }
+// Runs `invocations` of one stage as rows of at most kMaxGroups workgroups, which the shader
+// numbers row by row (a 4096^2 map has 262 144 groups of texels); returns the GPU time. On
+// lavapipe a buffer that large exceeds the 128 MiB storage-buffer range first (make_buffer's
+// error), so only devices with larger ranges use more than one row.
+double dispatch_stage(ComputePipeline& pipeline, const std::vector<const GpuBuffer*>& buffers, const BrsmPush& push,
+                      uint32_t invocations) {
+  const uint32_t groups = (invocations + kGroupSize - 1) / kGroupSize;
+  const uint32_t x = std::min(groups, kMaxGroups);
+  return pipeline.dispatch(buffers, &push, x, (groups + x - 1) / x);
+}
 
 }  // namespace
 
@@ -45,20 +55,20 @@ VplSet generate_brsm_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_
     ComputePipeline pipeline(context, "brsm", uint32_t(buffers.size()), sizeof(BrsmPush), {}, top_level);
     BrsmPush push{};
     push.stage = BRSM_STAGE_GBUFFER;
-    add_stage_ms(st, "gbuffer", pipeline.dispatch(buffers, &push, groups(uint32_t(gbuffer_size))));
+    add_stage_ms(st, "gbuffer", dispatch_stage(pipeline, buffers, push, uint32_t(gbuffer_size)));
     for (uint32_t m = 0; m < uint32_t(maps.size()); ++m) {
       push.map_index = m;
       push.stage = BRSM_STAGE_TEXELS;
-      add_stage_ms(st, "texels", pipeline.dispatch(buffers, &push, groups(texel_count)));
+      add_stage_ms(st, "texels", dispatch_stage(pipeline, buffers, push, texel_count));
       push.stage = BRSM_STAGE_FILTER;
-      add_stage_ms(st, "filter", pipeline.dispatch(buffers, &push, groups(texel_count)));
+      add_stage_ms(st, "filter", dispatch_stage(pipeline, buffers, push, texel_count));
       push.stage = BRSM_STAGE_MIP;
       for (uint32_t level = 1; level <= top; ++level) {
         push.level = level;
-        add_stage_ms(st, "mip", pipeline.dispatch(buffers, &push, groups((res >> level) * (res >> level))));
+        add_stage_ms(st, "mip", dispatch_stage(pipeline, buffers, push, (res >> level) * (res >> level)));
       }
       push.stage = BRSM_STAGE_WARP;
-      add_stage_ms(st, "warp", pipeline.dispatch(buffers, &push, groups(maps[m].vpl_count)));
+      add_stage_ms(st, "warp", dispatch_stage(pipeline, buffers, push, maps[m].vpl_count));
       std::vector<BrsmTexel> map_texels(texel_count);
       texels->download(std::span<BrsmTexel>(map_texels));
       for (const BrsmTexel& t : map_texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;

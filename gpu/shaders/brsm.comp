@@ -46,7 +46,8 @@ layout(push_constant) uniform Push { BrsmPush push; };
 layout(local_size_x = 64) in;
 
 void main() {
-  uint i = gl_GlobalInvocationID.x;
+  // Large stages come as several rows of workgroups (gpu/brsm_pass.cpp), numbered row by row.
+  uint i = gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x + gl_GlobalInvocationID.x;
   BrsmSettings s = settings;
   uint res = s.resolution;
   if (push.stage == BRSM_STAGE_GBUFFER) {

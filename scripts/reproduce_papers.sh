@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 configs=("$@")
-[ ${#configs[@]} -gt 0 ] || configs=(sst-table1 sst-table1-denoised sst-table3 thesis-table7-1 thesis-fig7-3 thesis-fig7-5 thesis-fig7-5-denoised thesis-table7-2 sequence-pan sequence-pan-equal-time rtslc-interleave-frames rtslc-tree-build rtslc-weights equal-time gi10-static-one-bounce gi10-static gi10-pan-breakfast gi10-pan-staircase brsm-one-bounce brsm-vpl-count brsm-weights)
+[ ${#configs[@]} -gt 0 ] || configs=(sst-table1 sst-table1-denoised sst-table3 thesis-table7-1 thesis-fig7-3 thesis-fig7-5 thesis-fig7-5-denoised thesis-table7-2 sequence-pan sequence-pan-equal-time rtslc-interleave-frames rtslc-tree-build rtslc-weights equal-time gi10-static-one-bounce gi10-static gi10-pan-breakfast gi10-pan-staircase brsm-one-bounce brsm-vpl-count brsm-weights brsm-resolution)
 scene_dir="${SST_SCENE_DIR:-../shared/scenes}"
 for name in "${configs[@]}"; do
   out="results/$name"

@@ -53,26 +53,18 @@ VplSet generate_brsm_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_
     for (const auto* b : {&settings, &map_buffer, &gbuffer, &texels, &mip, &slots}) buffers.push_back(b->get());
     for (const GpuBuffer* b : gpu_lights.buffers()) buffers.push_back(b);
     ComputePipeline pipeline(context, "brsm", uint32_t(buffers.size()), sizeof(BrsmPush), {}, top_level);
-    BrsmPush push{};
-    push.stage = BRSM_STAGE_GBUFFER;
-    add_stage_ms(st, "gbuffer", dispatch_stage(pipeline, buffers, push, uint32_t(gbuffer_size)));
-    for (uint32_t m = 0; m < uint32_t(maps.size()); ++m) {
-      push.map_index = m;
-      push.stage = BRSM_STAGE_TEXELS;
-      add_stage_ms(st, "texels", dispatch_stage(pipeline, buffers, push, texel_count));
-      push.stage = BRSM_STAGE_FILTER;
-      add_stage_ms(st, "filter", dispatch_stage(pipeline, buffers, push, texel_count));
-      push.stage = BRSM_STAGE_MIP;
-      for (uint32_t level = 1; level <= top; ++level) {
-        push.level = level;
-        add_stage_ms(st, "mip", dispatch_stage(pipeline, buffers, push, (res >> level) * (res >> level)));
-      }
-      push.stage = BRSM_STAGE_WARP;
-      add_stage_ms(st, "warp", dispatch_stage(pipeline, buffers, push, maps[m].vpl_count));
-      std::vector<BrsmTexel> map_texels(texel_count);
-      texels->download(std::span<BrsmTexel>(map_texels));
-      for (const BrsmTexel& t : map_texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
-    }
+    std::vector<BrsmTexel> map_texels(texel_count);
+    brsm_schedule(
+        plan,
+        [&](uint32_t stage, uint32_t level, uint32_t m) {
+          const BrsmPush push{stage, level, m, 0};
+          add_stage_ms(st, brsm_stage_name(stage),
+                       dispatch_stage(pipeline, buffers, push, brsm_stage_size(s, maps[m], stage, level)));
+        },
+        [&](uint32_t) {
+          texels->download(std::span<BrsmTexel>(map_texels));
+          for (const BrsmTexel& t : map_texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
+        });
     std::vector<VplSlot> out(size_t(params.vpls));
     slots->download(std::span<VplSlot>(out));
     drawn.reserve(out.size());

@@ -1,5 +1,5 @@
 // VPLs from Bidirectional Reflective Shadow Maps (BRSM; Ritschel et al. 2011, with the hybrid
-// thesis's changes, its ch. 4.1; docs/design/brsm.md), shared C++/GLSL source: the CPU's schedule
+// thesis's changes, its ch. 4.1; docs/design/brsm.md), shared C++/GLSL source: the CPU's executor
 // is core/brsm/brsm_generator.cpp, the GPU's gpu/brsm_pass.cpp with gpu/shaders/brsm.comp.
 //
 // A map covers a range of lights (BrsmMap). Each of its R x R texels casts one ray from a light:
@@ -23,6 +23,8 @@
 //   BRSM_TEXEL(i)               BrsmTexel: texel i of the current map (row-major)
 //   BRSM_MIP(i)                 vec2: entry i of the current map's mip chain (brsm_mip_offset):
 //                               (filtered importance, pVPL luminance), summed over the texels below
+//   BRSM_STORE_GSAMPLE(i, g)    and BRSM_STORE_TEXEL(i, t), BRSM_STORE_MIP(i, m), BRSM_STORE_VPL(i, v):
+//                               what brsm_stage_step writes (VPL i of the whole set)
 #ifndef SST_CORE_BRSM_BRSM_H
 #define SST_CORE_BRSM_BRSM_H
 #include "core/accel/bvh_layout.h"
@@ -36,7 +38,8 @@
 #include "core/vpl/vpl.h"
 
 #if !defined(BRSM_CTX_PARAM) || !defined(BRSM_CTX) || !defined(BRSM_GSAMPLE) || !defined(BRSM_TEXEL) || \
-    !defined(BRSM_MIP)
+    !defined(BRSM_MIP) || !defined(BRSM_STORE_GSAMPLE) || !defined(BRSM_STORE_TEXEL) || !defined(BRSM_STORE_MIP) || \
+    !defined(BRSM_STORE_VPL)
 #error "define the BRSM_* hooks before including core/brsm/brsm.h"
 #endif
 
@@ -310,6 +313,26 @@ SST_FUNC Vpl brsm_warp(BRSM_CTX_PARAM SST_IN(BrsmSettings) s, SST_IN(BrsmMap) ma
     v.intensity = intensity;
   }
   return v;
+}
+
+// Element i of stage `stage` (BRSM_STAGE_*; `level`: the mip level BRSM_STAGE_MIP writes) of map
+// `map` (number `map_index`), stored through the BRSM_STORE_* hooks; nothing for i beyond
+// brsm_stage_size. Both schedules run every element of a stage before the next stage starts.
+SST_FUNC void brsm_stage_step(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM BRSM_CTX_PARAM SST_IN(BrsmSettings) s,
+                              SST_IN(BrsmMap) map, uint map_index, uint stage, uint level, uint i) {
+  if (i >= brsm_stage_size(s, map, stage, level)) return;
+  uint res = s.resolution;
+  if (stage == BRSM_STAGE_GBUFFER) {
+    BRSM_STORE_GSAMPLE(i, brsm_gbuffer_sample(SCENE_CTX RAY_CTX s, i % s.gbuffer_width, i / s.gbuffer_width));
+  } else if (stage == BRSM_STAGE_TEXELS) {
+    BRSM_STORE_TEXEL(i, brsm_texel(SCENE_CTX LIGHT_CTX RAY_CTX BRSM_CTX s, map, map_index, i));
+  } else if (stage == BRSM_STAGE_FILTER) {
+    BRSM_STORE_MIP(i, brsm_filtered(BRSM_CTX s, i));
+  } else if (stage == BRSM_STAGE_MIP) {
+    BRSM_STORE_MIP(brsm_mip_offset(res, level) + i, brsm_mip_sum(BRSM_CTX res, level, i));
+  } else if (stage == BRSM_STAGE_WARP) {
+    BRSM_STORE_VPL(map.vpl_offset + i, brsm_warp(BRSM_CTX s, map, map_index, i));
+  }
 }
 
 SST_END

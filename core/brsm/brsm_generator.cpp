@@ -6,17 +6,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <numeric>
 
 #include "core/shading/surface.h"
 
 namespace sst {
 
-// The CPU's buffers behind the BRSM_* hooks.
+// The CPU's buffers behind the BRSM_* hooks (each element written by one step only).
 struct BrsmBuffers {
-  const BrsmGSample* gbuffer;
-  const BrsmTexel* texels;
-  const vec2* mip;
+  BrsmGSample* gbuffer;
+  BrsmTexel* texels;
+  vec2* mip;
+  Vpl* vpls;
 };
 
 }  // namespace sst
@@ -26,6 +28,10 @@ struct BrsmBuffers {
 #define BRSM_GSAMPLE(i) brsm.gbuffer[i]
 #define BRSM_TEXEL(i) brsm.texels[i]
 #define BRSM_MIP(i) brsm.mip[i]
+#define BRSM_STORE_GSAMPLE(i, g) brsm.gbuffer[i] = g
+#define BRSM_STORE_TEXEL(i, t) brsm.texels[i] = t
+#define BRSM_STORE_MIP(i, m) brsm.mip[i] = m
+#define BRSM_STORE_VPL(i, v) brsm.vpls[i] = v
 #include "core/brsm/brsm.h"
 
 namespace sst {
@@ -36,14 +42,6 @@ void parallel_each(uint32_t count, F&& f) {
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, 256), [&](const tbb::blocked_range<uint32_t>& r) {
     for (uint32_t i = r.begin(); i != r.end(); ++i) f(i);
   });
-}
-
-// Adds the wall time of `f` to stage `stage` of `stats`.
-template <class F>
-void timed(VplStats& stats, const char* stage, F&& f) {
-  auto start = std::chrono::steady_clock::now();
-  f();
-  add_stage_ms(stats, stage, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace
@@ -138,6 +136,30 @@ BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplPara
   return {brsm_maps(lights, params.vpls, params.brsm_maps), s};
 }
 
+const char* brsm_stage_name(uint32_t stage) {
+  switch (stage) {
+    case BRSM_STAGE_GBUFFER: return "gbuffer";
+    case BRSM_STAGE_TEXELS: return "texels";
+    case BRSM_STAGE_FILTER: return "filter";
+    case BRSM_STAGE_MIP: return "mip";
+    default: return "warp";
+  }
+}
+
+void brsm_schedule(const BrsmPlan& plan, const std::function<void(uint32_t, uint32_t, uint32_t)>& step,
+                   const std::function<void(uint32_t)>& map_done) {
+  if (plan.maps.empty()) return;
+  step(BRSM_STAGE_GBUFFER, 0, 0);
+  const uint32_t top = brsm_top_level(plan.settings.resolution);
+  for (uint32_t m = 0; m < uint32_t(plan.maps.size()); ++m) {
+    step(BRSM_STAGE_TEXELS, 0, m);
+    step(BRSM_STAGE_FILTER, 0, m);
+    for (uint32_t level = 1; level <= top; ++level) step(BRSM_STAGE_MIP, level, m);
+    step(BRSM_STAGE_WARP, 0, m);
+    map_done(m);
+  }
+}
+
 VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const LightSampler& lights,
                           const VplParams& params, const ViewParams& view, uint32_t seed, bool diffuse_only,
                           VplStats* stats, const EmissionFocus& focus) {
@@ -155,33 +177,22 @@ VplSet generate_brsm_vpls(const Scene& scene, const EmbreeAccel& accel, const Li
   std::vector<BrsmGSample> gbuffer(size_t(s.gbuffer_width) * s.gbuffer_height);
   std::vector<BrsmTexel> texels(maps.empty() ? 0 : texel_count);
   std::vector<vec2> mip(maps.empty() ? 0 : brsm_mip_offset(res, top + 1));
-  const BrsmBuffers buffers{gbuffer.data(), texels.data(), mip.data()};
   VplSet drawn(size_t(maps.empty() ? 0 : params.vpls));
-  if (!maps.empty())
-    timed(st, "gbuffer", [&] {
-      parallel_each(uint32_t(gbuffer.size()), [&](uint32_t i) {
-        gbuffer[i] = brsm_gbuffer_sample(scene, accel, s, i % s.gbuffer_width, i / s.gbuffer_width);
+  const BrsmBuffers buffers{gbuffer.data(), texels.data(), mip.data(), drawn.data()};
+  brsm_schedule(
+      plan,
+      [&](uint32_t stage, uint32_t level, uint32_t m) {
+        auto begin = std::chrono::steady_clock::now();
+        const BrsmMap& map = maps[m];
+        parallel_each(brsm_stage_size(s, map, stage, level), [&](uint32_t i) {
+          brsm_stage_step(scene, packed, accel, buffers, s, map, m, stage, level, i);
+        });
+        add_stage_ms(st, brsm_stage_name(stage),
+                     std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - begin).count());
+      },
+      [&](uint32_t) {
+        for (const BrsmTexel& t : texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
       });
-    });
-  for (uint32_t m = 0; m < uint32_t(maps.size()); ++m) {
-    const BrsmMap& map = maps[m];
-    timed(st, "texels", [&] {
-      parallel_each(texel_count, [&](uint32_t i) { texels[i] = brsm_texel(scene, packed, accel, buffers, s, map, m, i); });
-    });
-    timed(st, "filter", [&] {
-      parallel_each(texel_count, [&](uint32_t i) { mip[i] = brsm_filtered(buffers, s, i); });
-    });
-    timed(st, "mip", [&] {
-      for (uint32_t level = 1; level <= top; ++level) {
-        const uint32_t base = brsm_mip_offset(res, level), side = res >> level;
-        parallel_each(side * side, [&](uint32_t i) { mip[base + i] = brsm_mip_sum(buffers, res, level, i); });
-      }
-    });
-    timed(st, "warp", [&] {
-      parallel_each(map.vpl_count, [&](uint32_t i) { drawn[map.vpl_offset + i] = brsm_warp(buffers, s, map, m, i); });
-    });
-    for (const BrsmTexel& t : texels) st.pvpls += luminance(t.intensity) > 0.0f ? 1 : 0;
-  }
   VplSet vpls = brsm_finish(drawn, maps.size(), s, params, scene, st);
   st.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return vpls;

@@ -8,6 +8,7 @@
 // vpl_max_bounces 1; light that bounces more than once is not in it.
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/accel/embree_accel.h"
@@ -35,6 +36,16 @@ struct BrsmPlan {
 // to an empty BRSM record.
 BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplParams& params, const ViewParams& view,
                    uint32_t seed, bool diffuse_only, const EmissionFocus& focus, VplStats& stats);
+
+// The order both backends run the stages in: the G-buffer, then per map its texels, filter, mip
+// levels 1..top and warp. `step(stage, level, map)` runs every element of one stage (BRSM_STAGE_*;
+// `level` 0 except for BRSM_STAGE_MIP); `map_done(map)` follows each map's warp. Nothing without
+// maps.
+void brsm_schedule(const BrsmPlan& plan, const std::function<void(uint32_t, uint32_t, uint32_t)>& step,
+                   const std::function<void(uint32_t)>& map_done);
+
+// The name of a stage in VplStats::stage_ms: gbuffer, texels, filter, mip, warp.
+const char* brsm_stage_name(uint32_t stage);
 
 // The set from the VPLs drawn from `map_count` maps of `settings`: those of zero intensity (drawn
 // from a map whose texels all missed) left out, in order; fills `stats` (VPL count, per-bounce

@@ -1,5 +1,5 @@
 // BRSM VPL generation's data crossing the host/GPU boundary (core/brsm/brsm.h is the algorithm,
-// core/brsm/brsm_generator.cpp the CPU's schedule, gpu/brsm_pass.cpp and gpu/shaders/brsm.comp
+// core/brsm/brsm_generator.cpp the CPU's executor, gpu/brsm_pass.cpp and gpu/shaders/brsm.comp
 // the GPU's), defined once for C++ and GLSL.
 #ifndef SST_CORE_BRSM_BRSM_LAYOUT_H
 #define SST_CORE_BRSM_BRSM_LAYOUT_H
@@ -98,6 +98,14 @@ struct BrsmPush {
   uint map_index;  // into the maps buffer
   uint pad0;
 };
+
+// The elements of stage `stage` (BRSM_STAGE_*) of map `map`; `level`: BRSM_STAGE_MIP's level.
+SST_FUNC uint brsm_stage_size(SST_IN(BrsmSettings) s, SST_IN(BrsmMap) map, uint stage, uint level) {
+  if (stage == BRSM_STAGE_GBUFFER) return s.gbuffer_width * s.gbuffer_height;
+  if (stage == BRSM_STAGE_TEXELS || stage == BRSM_STAGE_FILTER) return s.resolution * s.resolution;
+  if (stage == BRSM_STAGE_MIP) return (s.resolution >> level) * (s.resolution >> level);
+  return stage == BRSM_STAGE_WARP ? map.vpl_count : 0u;
+}
 
 SST_END
 

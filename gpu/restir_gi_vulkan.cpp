@@ -9,7 +9,7 @@ namespace sst::gpu {
 void VulkanRestirGi::release_device() {
   direct_.reset();
   pipelines_.reset();
-  history_.reset();
+  if (history_) park_restir_history(*history_);
 }
 
 FrameOutput VulkanRestirGi::render(const RenderContext& ctx, const GpuRenderContext& gpu, StageTimer& timer) {
@@ -18,8 +18,8 @@ FrameOutput VulkanRestirGi::render(const RenderContext& ctx, const GpuRenderCont
       direct_ = make_path_trace_pipeline(gpu.vulkan(), gpu.lights(), gpu.top_level());
       pipelines_ = make_restir_pipelines(gpu);
     });
-    history_ = std::make_unique<GpuRestirHistory>();
   }
+  if (!history_) history_ = std::make_unique<GpuRestirHistory>();
   GpuPathTraceResult direct = timer.time("render", [&] {
     return render_path_tracer(gpu, *direct_, ctx.camera, ctx.width, ctx.height, ctx.options.seed, ctx.options.spp,
                               restir_gi_direct_params(), render_flags(ctx.options));

@@ -10,11 +10,31 @@ namespace sst::gpu {
 
 std::unique_ptr<RestirPipelines> make_restir_pipelines(const GpuRenderContext& gpu) {
   auto out = std::make_unique<RestirPipelines>();
-  for (int stage = 0; stage < 5; ++stage)
+  for (int stage = 0; stage < 6; ++stage)
     out->stages[size_t(stage)] =
         gpu.make_pipeline("restir_" + std::to_string(stage), GpuRenderContext::kSceneBufferCount + 7,
                           uint32_t(sizeof(glsl::RestirPush)), gpu.lights().sampler_specialization());
   return out;
+}
+
+void park_restir_history(GpuRestirHistory& history) {
+  RestirHistory& h = history.parked;
+  h = RestirHistory{};
+  if (history.valid) {
+    const size_t pixels = size_t(history.view_params.width) * size_t(history.view_params.height);
+    h.surfaces.resize(pixels);
+    h.reservoirs.resize(pixels);
+    history.surfaces->download(std::span<glsl::RestirSurface>(h.surfaces));
+    history.reservoirs->download(std::span<glsl::RestirReservoir>(h.reservoirs));
+    h.view = history.view_params;
+    h.space = history.space;
+    h.valid = true;
+  }
+  h.posed = true;
+  history.surfaces.reset();
+  history.reservoirs.reset();
+  history.view.reset();
+  history.valid = false;
 }
 
 void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPipelines& pipelines, RestirKind kind,
@@ -29,11 +49,24 @@ void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPip
   auto reservoirs_of = [&] {
     return make_buffer(context, pixels, sizeof(glsl::RestirReservoir), std::string(stage_name) + ": reservoirs of " + size);
   };
-  if (!history.surfaces || !restir_history_usable(true, history.view_params, base)) {
+  const RestirSampleSpace space = restir_sample_space(ctx.lights.packed().header);
+  if (!history.surfaces || !restir_history_usable(true, history.view_params, history.space, base, space)) {
     history.surfaces = surfaces_of();
     history.reservoirs = reservoirs_of();
     history.view = make_buffer(context, 1, sizeof(glsl::ViewParams), std::string(stage_name) + ": the history's view");
     history.valid = false;
+    // A history parked on the host while the device was made again comes back where it serves.
+    const RestirHistory& h = history.parked;
+    if (restir_history_usable(h.valid, h.view, h.space, base, space)) {
+      history.surfaces->upload(std::span<const glsl::RestirSurface>(h.surfaces));
+      history.reservoirs->upload(std::span<const glsl::RestirReservoir>(h.reservoirs));
+      history.view_params = h.view;
+      history.view->upload(std::span<const glsl::ViewParams>(&history.view_params, 1));
+      history.space = h.space;
+      history.valid = true;
+    }
+    history.posed = history.posed || h.posed;
+    history.parked = RestirHistory{};
   }
   std::unique_ptr<GpuBuffer> surfaces = surfaces_of(), in = reservoirs_of(), out = reservoirs_of();
   auto texels = make_buffer(context, pixels, sizeof(glsl::RestirTexel), std::string(stage_name) + ": sums of " + size);
@@ -49,17 +82,21 @@ void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPip
     };
     for (int round = 0; round < ctx.options.spp; ++round) {
       // As run_restir on the CPU: only a frame's first round continues the previous frame's last.
-      const bool temporal = round == 0 && reuse.temporal && history.valid;
-      const RestirPush push = restir_round_push(base, uint32_t(round), 0u, temporal);
+      const bool temporal = round == 0 && reuse.temporal && restir_history_kept(history.posed, reuse) && history.valid;
+      const RestirPush push = restir_round_push(base, uint32_t(round), 0u, temporal, history.posed);
       // Each stage writes `out`, which the next reads as `in`.
       run(initial, push);
       std::swap(in, out);
+      if (temporal && history.posed && kind == RestirKind::indirect) {
+        run(5, push);  // the history's reservoirs validated into `out`
+        std::swap(history.reservoirs, out);
+      }
       if (temporal) {
         run(1, push);
         std::swap(in, out);
       }
       for (int pass = 0; pass < reuse.spatial_passes; ++pass) {
-        run(2, restir_round_push(base, uint32_t(round), uint32_t(pass), temporal));
+        run(2, restir_round_push(base, uint32_t(round), uint32_t(pass), temporal, false));
         std::swap(in, out);
       }
       run(3, push);
@@ -68,7 +105,9 @@ void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPip
       std::swap(history.reservoirs, in);
       history.view_params = push.view;
       history.view->upload(std::span<const glsl::ViewParams>(&history.view_params, 1));
+      history.space = space;
       history.valid = true;
+      history.posed = false;
     }
   });
   std::vector<glsl::RestirTexel> sums(pixels);

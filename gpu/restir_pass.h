@@ -17,19 +17,27 @@ namespace sst::gpu {
 
 class GpuRenderContext;
 
-// The five stages' pipelines (restir_0 .. _4), compiled for gpu's light sampler and acceleration
+// The six stages' pipelines (restir_0 .. _5), compiled for gpu's light sampler and acceleration
 // structure.
 struct RestirPipelines {
-  std::array<std::unique_ptr<ComputePipeline>, 5> stages;
+  std::array<std::unique_ptr<ComputePipeline>, 6> stages;
 };
 std::unique_ptr<RestirPipelines> make_restir_pipelines(const GpuRenderContext& gpu);
 
-// RestirHistory (core/restir/restir.h) on the device.
+// RestirHistory (core/restir/restir.h) on the device; between two devices (a pose change makes the
+// scene's device context again) on the host, in `parked`.
 struct GpuRestirHistory {
   std::unique_ptr<GpuBuffer> surfaces, reservoirs, view;
   glsl::ViewParams view_params{};
+  RestirSampleSpace space;
   bool valid = false;
+  bool posed = false;
+  RestirHistory parked;
 };
+
+// Moves the history to the host and releases its buffers, before their device goes: the scene is
+// posed anew, so the next run_restir uploads it as a posed history.
+void park_restir_history(GpuRestirHistory& history);
 
 // run_restir on the GPU. Records the dispatches' times in frame.method_counters["gpu_ms"][stage].
 void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPipelines& pipelines, RestirKind kind,

@@ -73,9 +73,10 @@ FrameRenderer::~FrameRenderer() = default;
 void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
   check_coordinates(scene);  // before Embree sees a vertex it cannot bound
   accel_ = timer.time("accel_build", [&] { return std::make_unique<EmbreeAccel>(scene, options_.accel != "embree"); });
-  // ReSTIR DI's history names lights and points of the previous pose, and on Vulkan lives on the
-  // device that is made again below: temporal reuse restarts after a pose change, on both backends.
-  restir_history_.reset();
+  // ReSTIR's histories name lights and points of the previous pose: their next temporal pass
+  // evaluates them in this one. On Vulkan they live on the device made again below, so they wait
+  // on the host meanwhile.
+  if (restir_history_) restir_history_->posed = true;
   method_->scene_posed();
   lights_ = timer.time("light_setup", [&] {
     return std::make_unique<LightSampler>(scene, parse_light_sampler(options_.light_sampler),
@@ -88,7 +89,7 @@ void FrameRenderer::prepare(const Scene& scene, StageTimer& timer) {
     // trees and their cuts on the CPU) and the scene uploaded to the device.
     if (vulkan_method_) vulkan_method_->release_device();
     restir_pipelines_.reset();
-    gpu_restir_history_.reset();
+    if (gpu_restir_history_) gpu::park_restir_history(*gpu_restir_history_);
     gpu_.reset();
     gpu_ = timer.time("gpu_setup", [&] {
       return std::make_unique<gpu::GpuRenderContext>(options_.device, scene, *lights_, *accel_->flat_bvh(), gpu_accel_);
@@ -141,10 +142,9 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
   if (vulkan_method) {
     result.frame = vulkan_method->render(context, *gpu_, result.timer);
     if (direct_light && restir_direct(result.options)) {
-      if (!restir_pipelines_) {
+      if (!restir_pipelines_)
         restir_pipelines_ = result.timer.time("shader_compile", [&] { return gpu::make_restir_pipelines(*gpu_); });
-        gpu_restir_history_ = std::make_unique<gpu::GpuRestirHistory>();
-      }
+      if (!gpu_restir_history_) gpu_restir_history_ = std::make_unique<gpu::GpuRestirHistory>();
       gpu::add_restir_direct(context, *gpu_, *restir_pipelines_, result.timer, result.frame, *gpu_restir_history_);
     }
     return result;

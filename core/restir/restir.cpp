@@ -43,16 +43,22 @@ RestirPush restir_push(const RenderContext& ctx, float ray_epsilon, const Restir
   return push;
 }
 
-RestirPush restir_round_push(const RestirPush& base, uint32_t round, uint32_t pass, bool temporal) {
+RestirPush restir_round_push(const RestirPush& base, uint32_t round, uint32_t pass, bool temporal, bool posed) {
   RestirPush push = base;
   push.view.sample_offset = round;
   push.pass = pass;
   if (temporal) push.flags |= RESTIR_TEMPORAL;
+  if (temporal && posed) push.flags |= RESTIR_POSED;
   return push;
 }
 
-bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirPush& push) {
-  return valid && view.width == push.view.width && view.height == push.view.height;
+RestirSampleSpace restir_sample_space(const glsl::LightHeader& lights) {
+  return {lights.distribution_size, lights.punctual_count, lights.triangle_count};
+}
+
+bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirSampleSpace& space,
+                           const RestirPush& push, const RestirSampleSpace& now) {
+  return valid && view.width == push.view.width && view.height == push.view.height && space == now;
 }
 
 void add_restir_sums(std::span<const RestirTexel> sums, int spp, RestirKind kind, FrameOutput& frame) {
@@ -92,18 +98,26 @@ void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& bas
       restir_texel_count(sums[i], c);
     });
   };
+  const RestirSampleSpace space = restir_sample_space(lights.header);
   timer.time(stage_name, [&] {
     for (int round = 0; round < ctx.options.spp; ++round) {
       // A frame's rounds are independent estimates (chained, they were correlated and their mean
       // measured worse); its first round continues the previous frame's last.
-      const bool temporal =
-          round == 0 && reuse.temporal && restir_history_usable(history.valid, history.view, base);
-      const RestirPush push = restir_round_push(base, uint32_t(round), 0u, temporal);
+      const bool temporal = round == 0 && reuse.temporal && restir_history_kept(history.posed, reuse) &&
+                            restir_history_usable(history.valid, history.view, history.space, base, space);
+      const RestirPush push = restir_round_push(base, uint32_t(round), 0u, temporal, history.posed);
       pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
         reservoirs[i] = kind == RestirKind::direct
                             ? restir_di_initial_pixel(scene, lights, accel, push, x, y, surfaces[i], c)
                             : restir_gi_initial_pixel(scene, lights, accel, push, x, y, surfaces[i], c);
       });
+      if (temporal && history.posed && kind == RestirKind::indirect) {
+        const RestirFrame in{surfaces, reservoirs, history};
+        pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
+          next[i] = restir_gi_validate_pixel(scene, lights, accel, in, push, x, y, c);
+        });
+        std::swap(history.reservoirs, next);
+      }
       if (temporal) {
         const RestirFrame in{surfaces, reservoirs, history};
         pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
@@ -113,7 +127,7 @@ void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& bas
       }
       for (int pass = 0; pass < reuse.spatial_passes; ++pass) {
         const RestirFrame in{surfaces, reservoirs, history};
-        const RestirPush pass_push = restir_round_push(base, uint32_t(round), uint32_t(pass), temporal);
+        const RestirPush pass_push = restir_round_push(base, uint32_t(round), uint32_t(pass), temporal, false);
         pass_over([&](size_t i, uint x, uint y, PathCounters& c) {
           next[i] = restir_spatial_pixel(scene, lights, accel, in, pass_push, x, y, c);
         });
@@ -128,7 +142,9 @@ void run_restir(const RenderContext& ctx, RestirKind kind, const RestirPush& bas
       surfaces.resize(pixels);
       reservoirs.resize(pixels);
       history.view = push.view;
+      history.space = space;
       history.valid = true;
+      history.posed = false;
     }
   });
   add_restir_sums(sums, ctx.options.spp, kind, frame);

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "core/lights/light_layout.h"
 #include "core/render/method.h"
 #include "core/restir/restir_layout.h"
 #include "core/util/stage_timer.h"
@@ -26,26 +27,47 @@ struct RestirReuse {
   int neighbours = 5;
   float radius = 30.0f;
   bool unbiased = true;
+  // Whether the history outlives a pose change of the scene (evaluated in the new pose, ReSTIR GI's
+  // vertices validated), or is dropped.
+  bool across_poses = true;
 };
 
+// Whether a history, posed anew since or not, takes part in temporal reuse under `reuse`.
+inline bool restir_history_kept(bool posed, const RestirReuse& reuse) { return !posed || reuse.across_poses; }
+
+// What a history's samples are named by: lights by their distribution entry, GI vertices by their
+// triangle. A history serves another pose of the scene only where these mean the same.
+struct RestirSampleSpace {
+  uint32_t lights = 0, punctual = 0, triangles = 0;
+  bool operator==(const RestirSampleSpace&) const = default;
+};
+RestirSampleSpace restir_sample_space(const glsl::LightHeader& lights);
+
 // What temporal reuse keeps between frames: the last round's first hits, its final reservoirs and
-// the view it saw them with.
+// the view it saw them with. `posed`: the scene was posed anew since (FrameRenderer::prepare,
+// Method::scene_posed), so the next temporal pass evaluates the history in the scene as it is now
+// (RESTIR_POSED).
 struct RestirHistory {
   std::vector<RestirSurface> surfaces;
   std::vector<RestirReservoir> reservoirs;
   glsl::ViewParams view{};
+  RestirSampleSpace space;
   bool valid = false;
+  bool posed = false;
 };
 
 // The push constants every round of ctx starts from: the view, the ray offset, the reuse; the
 // caller adds its initial pass's fields.
 RestirPush restir_push(const RenderContext& ctx, float ray_epsilon, const RestirReuse& reuse);
 
-// `base` for round `round` and spatial pass `pass`, with or without a temporal pass.
-RestirPush restir_round_push(const RestirPush& base, uint32_t round, uint32_t pass, bool temporal);
+// `base` for round `round` and spatial pass `pass`, with or without a temporal pass, whose history
+// is `posed` (RestirHistory::posed) or not.
+RestirPush restir_round_push(const RestirPush& base, uint32_t round, uint32_t pass, bool temporal, bool posed);
 
-// Whether history of `view` (valid) can serve a round of `push`: the same image size.
-bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirPush& push);
+// Whether history of `view` over `space` (valid) can serve a round of `push` over `now`: the same
+// image size and sample space.
+bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirSampleSpace& space,
+                           const RestirPush& push, const RestirSampleSpace& now);
 
 // Runs ctx.options.spp rounds on the CPU from `base` (restir_push and the initial pass's fields)
 // and adds them to `frame` (add_restir_sums). `history` carries the last round to the next

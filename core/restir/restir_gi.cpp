@@ -33,6 +33,7 @@ RestirReuse restir_gi_reuse(const RestirGiParams& p) {
   r.neighbours = p.neighbours;
   r.radius = p.radius;
   r.unbiased = p.combine == "unbiased";
+  r.across_poses = p.validate;
   return r;
 }
 

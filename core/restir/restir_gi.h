@@ -23,6 +23,7 @@ struct RestirGiParams {
   int neighbours = 5;
   float radius = 30.0f;
   std::string combine = "unbiased";
+  bool validate = true;
 
   template <class V>
   void visit(V&& v) {
@@ -42,6 +43,10 @@ struct RestirGiParams {
     v("combine", combine,
       "how merged reservoirs are weighted (pairwise MIS): unbiased (a neighbour's weight for the pixel's own sample "
       "checked with a shadow ray) or biased (without)");
+    v("validate", validate,
+      "after the scene moves (animation, moving lights), find the history's vertices again on their triangles and "
+      "trace their radiance anew before temporal reuse (the paper's validation, every vertex of such a frame); false: "
+      "drop the history on such frames (spatial reuse only)");
   }
 };
 
@@ -50,8 +55,8 @@ class RestirGi final : public Method {
   explicit RestirGi(const RestirGiParams& params);
   FrameOutput render(const RenderContext& context, StageTimer& timer) override;
   nlohmann::json params() const override;
-  // The history's vertices and radiance belong to the old pose: temporal reuse restarts.
-  void scene_posed() override { history_ = RestirHistory{}; }
+  // The history's vertices and radiance belong to the old pose: the next frame validates them.
+  void scene_posed() override { history_.posed = true; }
   const RestirGiParams& gi_params() const { return params_; }
 
  private:

@@ -3,7 +3,8 @@
 // secondary vertex, and the radiance a path from there brings back toward the first hit (`pt`'s
 // path, core/pt/trace_path.h, with next-event estimation at every vertex): the reservoir's one
 // candidate. Its emission is left out, as the direct light at the first hit holds it. The
-// vertex is visible from its pixel by construction, so no visibility reuse is needed here.
+// vertex is visible from its pixel by construction, so no visibility reuse is needed here. And the
+// validation of a history's vertex after the scene moved (its pass: core/restir/restir_stages.h).
 #ifndef SST_CORE_RESTIR_RESTIR_GI_STAGES_H
 #define SST_CORE_RESTIR_RESTIR_GI_STAGES_H
 #include "core/pt/trace_path.h"
@@ -11,8 +12,14 @@
 
 SST_BEGIN
 
-// The pixel sampler of ReSTIR GI's secondary paths is seeded apart from the camera paths'.
-SST_CONSTANT uint kRestirGiSeed = 0x52474931u;  // "RGI1"
+// The pixel samplers of ReSTIR GI's secondary paths and of its validation paths are seeded apart
+// from the camera paths' and from each other.
+SST_CONSTANT uint kRestirGiSeed = 0x52474931u;            // "RGI1"
+SST_CONSTANT uint kRestirGiValidationSeed = 0x52474956u;  // "RGIV"
+
+// A validation ray starts this fraction of the vertex's distance from its pixel in front of the
+// vertex, toward the pixel, and must hit within half of it.
+SST_CONSTANT float kRestirGiValidationGap = 0.01f;
 
 // The secondary path's PathConfig: `max_bounces` and `rr_min_bounces` count indirect bounces from
 // the pixel, as `pt`'s do; the secondary vertex is the first bounce, so its path has one fewer.
@@ -66,6 +73,14 @@ SST_FUNC RestirReservoir restir_gi_initial(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_C
   candidate.normal = st.first_hit.ng;  // turned toward the ray: the side the radiance leaves from
   candidate.offset = st.first_hit.offset;
   candidate.radiance = radiance;
+  candidate.triangle = st.first_hit.triangle;
+  vec3 v0;
+  vec3 v1;
+  vec3 v2;
+  light_triangle_vertices(SCENE_CTX candidate.triangle, v0, v1, v2);
+  vec2 b = barycentric_of(v0, v1, v2, candidate.point);
+  candidate.b1 = b.x;
+  candidate.b2 = b.y;
   ShadowRay ray;
   LightSample ls;
   float g;
@@ -76,6 +91,42 @@ SST_FUNC RestirReservoir restir_gi_initial(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_C
   candidate.target = target;
   candidate.weight = reservoir_contribution_weight(weight_sum, 1.0f, target);
   return candidate;
+}
+
+// Validation, the paper's answer to stale samples: after the scene moved (an animation, a moving
+// light), reservoir r of the history's pixel whose first hit was sh gets its vertex back from its
+// triangle and barycentrics as posed now, and the radiance a new path from there brings back toward
+// sh; its W and M stay (restir_temporal then evaluates its target anew). The path's first ray
+// starts a little in front of the vertex, toward sh, and must find it there: where something now
+// covers the vertex the reservoir is dropped (empty, M = 0).
+SST_FUNC RestirReservoir restir_gi_validate(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM SST_IN(RestirSurface) sh,
+                                            SST_IN(RestirReservoir) r, bool diffuse_only, int max_bounces,
+                                            int rr_min_bounces, SST_INOUT(PixelSampler) ps,
+                                            SST_INOUT(PathCounters) counters) {
+  if (r.light != RESTIR_GI_VERTEX || sh.hit == 0u) return r;
+  vec3 v0;
+  vec3 v1;
+  vec3 v2;
+  light_triangle_vertices(SCENE_CTX r.triangle, v0, v1, v2);
+  vec3 y = barycentric_mix3(v0, v1, v2, vec2(r.b1, r.b2));
+  SST_PRECISE vec3 to_pixel = sh.p - y;
+  float distance = length3(to_pixel);
+  if (!(distance > 0.0f)) return restir_reservoir_empty();
+  SST_PRECISE vec3 toward = to_pixel / distance;
+  SST_PRECISE float gap = kRestirGiValidationGap * distance;
+  SST_PRECISE vec3 origin = y + toward * gap;
+  PathState st = path_begin(origin, -toward, ps);
+  trace_path_state(SCENE_CTX LIGHT_CTX RAY_CTX st, restir_gi_path_config(max_bounces, rr_min_bounces, diffuse_only));
+  ps = st.ps;
+  counters.bounce_rays += st.counters.primary_rays + st.counters.bounce_rays;
+  counters.shadow_rays += st.counters.shadow_rays;
+  if (!st.hit || !(length3(st.first_hit.p - y) <= 0.5f * gap)) return restir_reservoir_empty();
+  RestirReservoir v = r;
+  v.point = st.first_hit.p;
+  v.normal = st.first_hit.ng;
+  v.offset = st.first_hit.offset;
+  v.radiance = restir_gi_radiance(st.result.direct, st.first_hit.emission, st.result.indirect);
+  return v;
 }
 
 // Pixel (x, y)'s initial pass for the round of `push`: its camera ray's first hit (into `s`) and

@@ -24,6 +24,7 @@ using glm::vec3;
 #define RESTIR_DIFFUSE_ONLY 1u  // RenderOptions::diffuse_only
 #define RESTIR_UNBIASED 2u      // restir_combine unbiased: neighbours' MIS weights checked by shadow rays
 #define RESTIR_TEMPORAL 4u      // a temporal pass merges the history (restir_temporal, and there is history)
+#define RESTIR_POSED 8u         // the scene moved since the history's round (restir_temporal evaluates it anew)
 
 // Push constants of every stage: the view (its sample_offset is the round: each of a frame's spp
 // rounds resamples the first hits of sample index `round` of every pixel), the reuse parameters,
@@ -71,15 +72,16 @@ struct RestirSurface {
 // how many candidates it stands for (M), and the pixel's target function at the sample. The
 // sample is a light's distribution entry and, on an emissive triangle, the point's barycentrics
 // (ReSTIR DI); or a secondary vertex (light RESTIR_GI_VERTEX) with the radiance it sends toward
-// the pixel that found it (ReSTIR GI).
+// the pixel that found it (ReSTIR GI), named also by its triangle and barycentrics so that it
+// moves with its triangle when the scene is posed anew.
 struct RestirReservoir {
   uint light;        // LIGHT_NONE: empty; RESTIR_GI_VERTEX: the vertex below
-  float b1;
+  float b1;          // the point's barycentrics on its triangle (an emissive triangle's or the vertex's)
   float b2;
   float weight;      // W
   float m;           // M
   float target;      // p^(y) at the pixel
-  uint pad0;
+  uint triangle;     // ReSTIR GI: the vertex's triangle
   uint pad1;
   vec3 point;        // ReSTIR GI: the secondary vertex
   float offset;      // its ray offset (Surface::offset)

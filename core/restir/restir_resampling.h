@@ -53,7 +53,7 @@ SST_FUNC RestirReservoir restir_reservoir_empty() {
   r.weight = 0.0f;
   r.m = 0.0f;
   r.target = 0.0f;
-  r.pad0 = 0u;
+  r.triangle = 0u;
   r.pad1 = 0u;
   r.point = vec3(0.0f);
   r.offset = 0.0f;

@@ -6,7 +6,8 @@
 //
 //   restir_temporal   (a frame's first round, after a frame) the pixel's reservoir merged with the
 //                     previous frame's last where its point was seen, through the previous
-//                     camera, its M capped
+//                     camera, its M capped; after the scene moved, ReSTIR GI's history validated
+//                     first (restir_gi_validate)
 //   restir_spatial    (each spatial pass) the pixel's reservoir merged with up to `neighbours`
 //                     reservoirs of similar pixels within `radius` by pairwise MIS (unbiased: a
 //                     neighbour's weight for the pixel's sample checked with a shadow ray;
@@ -31,6 +32,7 @@
 //   RESTIR_HISTORY_RESERVOIR(i)    RestirReservoir: pixel i's final reservoir of the previous round
 #ifndef SST_CORE_RESTIR_RESTIR_STAGES_H
 #define SST_CORE_RESTIR_RESTIR_STAGES_H
+#include "core/restir/restir_gi_stages.h"
 #include "core/restir/restir_resampling.h"
 
 #if !defined(RESTIR_CTX_PARAM) || !defined(RESTIR_CTX) || !defined(RESTIR_SURFACE) || !defined(RESTIR_RESERVOIR) || \
@@ -44,10 +46,13 @@ SST_BEGIN
 // left where its point was (seen by that round's camera `previous`), whose M is capped at `cap`
 // times its own so that old samples cannot dominate for ever. The history's pixel is the one its
 // camera saw the point through, if its surface resembles this one (a static scene's point, or one
-// that moved little); then the history is evaluated at its own surface, as it was.
+// that moved little); then the history is evaluated at its own surface, as it was, or, when the
+// scene moved since (`posed`), as the scene is now: a light's sample names its light and point on
+// it, which moved with it, and a GI vertex was validated (restir_gi_validate), so the pair's two
+// MIS weights take the history's target from one function.
 SST_FUNC RestirReservoir restir_temporal(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM RESTIR_CTX_PARAM uint x, uint y,
                                          SST_IN(ViewParams) previous, bool diffuse_only, float cap, bool unbiased,
-                                         SST_INOUT(HashRng) rng, SST_INOUT(PathCounters) counters) {
+                                         bool posed, SST_INOUT(HashRng) rng, SST_INOUT(PathCounters) counters) {
   uint q = y * previous.width + x;
   RestirSurface s = RESTIR_SURFACE(q);
   RestirReservoir canonical = RESTIR_RESERVOIR(q);
@@ -68,6 +73,14 @@ SST_FUNC RestirReservoir restir_temporal(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX
   if (!restir_similar(s, sh, length3(d))) return canonical;
   RestirReservoir rh = RESTIR_HISTORY_RESERVOIR(h);
   rh.m = min(rh.m, cap * canonical.m);
+  if (posed && rh.light != LIGHT_NONE) {
+    rh.target = restir_target(SCENE_CTX LIGHT_CTX sh, diffuse_only, rh);
+    // Unbiased, the canonical sample's weight takes the history to produce only what sh sees in
+    // the scene as it is now (restir_merge_pair's shadow ray), so the history's own sample must
+    // reach sh now too, not only in the pose it was drawn in.
+    if (unbiased && rh.weight > 0.0f && !restir_visible(SCENE_CTX LIGHT_CTX RAY_CTX sh, diffuse_only, rh, counters))
+      rh.weight = 0.0f;
+  }
   RestirMerge g = restir_merge_begin(canonical);
   restir_merge_pair(SCENE_CTX LIGHT_CTX RAY_CTX s, canonical, sh, rh, 1.0f, diffuse_only, unbiased, u_pair, g, counters);
   return restir_merge_end(SCENE_CTX LIGHT_CTX RAY_CTX s, canonical, diffuse_only, u_canonical, g, counters);
@@ -152,7 +165,20 @@ SST_FUNC RestirReservoir restir_temporal_pixel(SCENE_CTX_PARAM LIGHT_CTX_PARAM R
                                                SST_INOUT(PathCounters) counters) {
   HashRng rng = hash_rng(push.view.seed, y * push.view.width + x, push.view.sample_offset, kRestirStreamTemporal);
   return restir_temporal(SCENE_CTX LIGHT_CTX RAY_CTX RESTIR_CTX x, y, previous, (push.flags & RESTIR_DIFFUSE_ONLY) != 0u,
-                         push.temporal_cap, (push.flags & RESTIR_UNBIASED) != 0u, rng, counters);
+                         push.temporal_cap, (push.flags & RESTIR_UNBIASED) != 0u, (push.flags & RESTIR_POSED) != 0u,
+                         rng, counters);
+}
+
+// The history's pixel (x, y) validated (restir_gi_validate) for the round of `push`, the first
+// after the scene moved.
+SST_FUNC RestirReservoir restir_gi_validate_pixel(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM RESTIR_CTX_PARAM
+                                                  SST_IN(RestirPush) push, uint x, uint y,
+                                                  SST_INOUT(PathCounters) counters) {
+  uint h = y * push.view.width + x;
+  PixelSampler ps = pixel_sampler(push.view.seed ^ kRestirGiValidationSeed, h, push.view.sample_offset);
+  return restir_gi_validate(SCENE_CTX LIGHT_CTX RAY_CTX RESTIR_HISTORY_SURFACE(h), RESTIR_HISTORY_RESERVOIR(h),
+                            (push.flags & RESTIR_DIFFUSE_ONLY) != 0u, push.max_bounces, push.rr_min_bounces, ps,
+                            counters);
 }
 
 // Pixel (x, y)'s spatial pass number push.pass (restir_spatial).

@@ -19,6 +19,24 @@ SST_FUNC vec3 barycentric_mix3(vec3 a, vec3 b1, vec3 b2, vec2 b) {
   return r;
 }
 
+// The barycentrics b of point p in the plane of triangle (a, b1, b2): barycentric_mix3's inverse,
+// by least squares (p off the plane is projected onto it). (0, 0) for a degenerate triangle.
+SST_FUNC vec2 barycentric_of(vec3 a, vec3 b1, vec3 b2, vec3 p) {
+  SST_PRECISE vec3 e1 = b1 - a;
+  SST_PRECISE vec3 e2 = b2 - a;
+  SST_PRECISE vec3 d = p - a;
+  SST_PRECISE float d11 = dot3(e1, e1);
+  SST_PRECISE float d12 = dot3(e1, e2);
+  SST_PRECISE float d22 = dot3(e2, e2);
+  SST_PRECISE float p1 = dot3(d, e1);
+  SST_PRECISE float p2 = dot3(d, e2);
+  SST_PRECISE float det = d11 * d22 - d12 * d12;
+  if (!(abs(det) > 0.0f)) return vec2(0.0f);
+  SST_PRECISE float u = (d22 * p1 - d12 * p2) / det;
+  SST_PRECISE float v = (d11 * p2 - d12 * p1) / det;
+  return vec2(u, v);
+}
+
 SST_FUNC vec2 barycentric_mix2(vec2 a, vec2 b1, vec2 b2, vec2 b) {
   SST_PRECISE float b0 = 1.0f - b.x - b.y;
   SST_PRECISE vec2 r = b0 * a + b.x * b1 + b.y * b2;

@@ -1,14 +1,15 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // rayquery build (gpu/CMakeLists.txt)
-// variants: RESTIR_STAGE 0 1 2 3 4
+// variants: RESTIR_STAGE 0 1 2 3 4 5
 // ReSTIR DI and ReSTIR GI on the GPU: the passes of core/restir/restir_stages.h and the initial
 // passes of restir_di_stages.h and restir_gi_stages.h, one dispatch each over the image, the twin
 // of run_restir's loops (core/restir/restir.cpp). Compiled once per stage (restir_<RESTIR_STAGE>):
 // 0 the camera ray, its first hit and ReSTIR DI's initial reservoir; 1 the temporal pass; 2 a
-// spatial pass; 3 the round's estimate added to the pixel's sums; 4 as 0, ReSTIR GI's.
-// gpu/restir_pass.cpp runs a frame: for each round 0 or 4, 1 where there is history, 2 per
-// spatial pass (the reservoir buffers swapping after each), then 3.
+// spatial pass; 3 the round's estimate added to the pixel's sums; 4 as 0, ReSTIR GI's; 5 ReSTIR
+// GI's history validated after the scene moved (read from 18, written to 15).
+// gpu/restir_pass.cpp runs a frame: for each round 0 or 4, 5 where the history is posed anew, 1
+// where there is history, 2 per spatial pass (the reservoir buffers swapping after each), then 3.
 // Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
 // (LIGHT_BUFFERS), 13 RestirSurface per pixel, 14 the reservoirs read, 15 the reservoirs written,
 // 16 RestirTexel per pixel, 17 and 18 the previous round's surfaces and reservoirs, 19 its view.
@@ -67,6 +68,9 @@ void main() {
   RestirTexel t = texels[pixel];
 #elif RESTIR_STAGE == 2
   reservoirs_out[pixel] = restir_spatial_pixel(round_push, xy.x, xy.y, c);
+  RestirTexel t = texels[pixel];
+#elif RESTIR_STAGE == 5
+  reservoirs_out[pixel] = restir_gi_validate_pixel(round_push, xy.x, xy.y, c);
   RestirTexel t = texels[pixel];
 #else
   RestirTexel t = texels[pixel];

@@ -115,20 +115,33 @@ test::SeedBlockMeans fourth_frames(const Scene& scene, const std::vector<KeyFram
   return blocks;
 }
 
-// Temporal reuse across frames, of a static view and of a turning camera (whose history is found
-// by reprojection): the fourth frame (1 spp each, 36 seeds) converges to pt's direct light of the
-// same frame (16 spp, 12 seeds).
+// Temporal reuse across frames, of a static view, of a turning camera (whose history is found by
+// reprojection) and of lights that move (whose history is evaluated where they are now): the fourth
+// frame (1 spp each, 36 seeds) converges to pt's direct light of the same frame (16 spp, 12 seeds).
 TEST(RestirDi, TemporalReuseAcrossFramesConvergesToThePathTracer) {
   Scene scene = test::many_lights(31, 800, 5, 5, true);
   std::vector<KeyFramePath> turning = parse_key_frame_paths(
       nlohmann::json::parse(R"([{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 30}]}])"), scene, "test");
-  for (const auto& [name, paths] : {std::pair<const char*, std::vector<KeyFramePath>>{"static", {}}, {"turning", turning}}) {
-    test::SeedBlockMeans pt = fourth_frames(scene, paths, false, 16, kSeeds);
-    test::SeedBlockMeans r = fourth_frames(scene, paths, true, 1, 3 * kSeeds);
+  // 40 emissive triangles and four point lights that outshine them, each moving 0.4 m a frame.
+  Scene few = test::many_lights(32, 40, 4, 0, false);
+  nlohmann::json moving = nlohmann::json::array();
+  for (int light = 0; light < 4; ++light)
+    moving.push_back({{"light", std::to_string(light)},
+                      {"keys", {{{"time", 0}, {"translate", {0, 0, 0}}}, {{"time", 0.1}, {"translate", {1.2, 0, 0.4}}}}}});
+  const std::vector<KeyFramePath> lights_moving = parse_key_frame_paths(moving, few, "test");
+  struct Case {
+    const char* name;
+    const Scene& scene;
+    std::vector<KeyFramePath> paths;
+  };
+  for (const Case& c : {Case{"static view", scene, {}}, Case{"turning camera", scene, turning},
+                        Case{"moving lights", few, lights_moving}}) {
+    test::SeedBlockMeans pt = fourth_frames(c.scene, c.paths, false, 16, kSeeds);
+    test::SeedBlockMeans r = fourth_frames(c.scene, c.paths, true, 1, 3 * kSeeds);
     test::BlockTTest t = test::block_t_test(r, pt, 6.5);
-    std::printf("restir, frame 4 of a %s view: largest |t| %.2f over %d blocks; image mean %.5f vs %.5f (pt)\n", name,
+    std::printf("restir, frame 4 of a %s: largest |t| %.2f over %d blocks; image mean %.5f vs %.5f (pt)\n", c.name,
                 t.largest, r.size(), r.image_mean(), pt.image_mean());
-    EXPECT_EQ(t.failures, 0) << name;
+    EXPECT_EQ(t.failures, 0) << c.name;
   }
 }
 

@@ -12,6 +12,15 @@ void VulkanRestirGi::release_device() {
   if (history_) park_restir_history(*history_);
 }
 
+std::vector<uint8_t> VulkanRestirGi::save_history() const {
+  return history_ ? restir_history_bytes(download_restir_history(*history_)) : std::vector<uint8_t>{};
+}
+
+void VulkanRestirGi::restore_history(std::span<const uint8_t> bytes, bool posed) {
+  if (!history_) history_ = std::make_unique<GpuRestirHistory>();
+  restore_restir_history(*history_, restir_history_from_bytes(bytes), posed);
+}
+
 FrameOutput VulkanRestirGi::render(const RenderContext& ctx, const GpuRenderContext& gpu, StageTimer& timer) {
   if (!pipelines_) {
     timer.time("shader_compile", [&] {

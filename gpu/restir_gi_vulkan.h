@@ -15,6 +15,8 @@ class VulkanRestirGi final : public VulkanMethod {
   explicit VulkanRestirGi(const RestirGi& method) : method_(method) {}
   FrameOutput render(const RenderContext& context, const GpuRenderContext& gpu, StageTimer& timer) override;
   void release_device() override;
+  std::vector<uint8_t> save_history() const override;
+  void restore_history(std::span<const uint8_t> bytes, bool posed) override;
 
  private:
   const RestirGi& method_;

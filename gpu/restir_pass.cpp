@@ -17,24 +17,33 @@ std::unique_ptr<RestirPipelines> make_restir_pipelines(const GpuRenderContext& g
   return out;
 }
 
+RestirHistory download_restir_history(const GpuRestirHistory& history) {
+  if (!history.valid) return history.parked;
+  RestirHistory h;
+  const size_t pixels = size_t(history.view_params.width) * size_t(history.view_params.height);
+  h.surfaces.resize(pixels);
+  h.reservoirs.resize(pixels);
+  history.surfaces->download(std::span<glsl::RestirSurface>(h.surfaces));
+  history.reservoirs->download(std::span<glsl::RestirReservoir>(h.reservoirs));
+  h.view = history.view_params;
+  h.space = history.space;
+  h.valid = true;
+  h.posed = history.posed;
+  return h;
+}
+
 void park_restir_history(GpuRestirHistory& history) {
-  RestirHistory& h = history.parked;
-  h = RestirHistory{};
-  if (history.valid) {
-    const size_t pixels = size_t(history.view_params.width) * size_t(history.view_params.height);
-    h.surfaces.resize(pixels);
-    h.reservoirs.resize(pixels);
-    history.surfaces->download(std::span<glsl::RestirSurface>(h.surfaces));
-    history.reservoirs->download(std::span<glsl::RestirReservoir>(h.reservoirs));
-    h.view = history.view_params;
-    h.space = history.space;
-    h.valid = true;
-  }
-  h.posed = true;
+  restore_restir_history(history, download_restir_history(history), true);
+}
+
+void restore_restir_history(GpuRestirHistory& history, RestirHistory host, bool posed) {
+  history.parked = std::move(host);
+  history.parked.posed = posed;
   history.surfaces.reset();
   history.reservoirs.reset();
   history.view.reset();
   history.valid = false;
+  history.posed = false;
 }
 
 void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPipelines& pipelines, RestirKind kind,

@@ -35,9 +35,16 @@ struct GpuRestirHistory {
   RestirHistory parked;
 };
 
+// The history on the host: read back from the device, or the parked one.
+RestirHistory download_restir_history(const GpuRestirHistory& history);
+
 // Moves the history to the host and releases its buffers, before their device goes: the scene is
 // posed anew, so the next run_restir uploads it as a posed history.
 void park_restir_history(GpuRestirHistory& history);
+
+// A history from the host (a sequence checkpoint's) that the next run_restir uploads, `posed` or
+// not.
+void restore_restir_history(GpuRestirHistory& history, RestirHistory host, bool posed);
 
 // run_restir on the GPU. Records the dispatches' times in frame.method_counters["gpu_ms"][stage].
 void run_restir(const RenderContext& ctx, const GpuRenderContext& gpu, RestirPipelines& pipelines, RestirKind kind,

@@ -3,8 +3,11 @@
 // builds and tests without Vulkan; the pipeline (core/pipeline/renderer.cpp) creates one when the
 // backend is vulkan.
 #pragma once
+#include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "core/render/frame.h"
 #include "core/render/method.h"
@@ -23,6 +26,9 @@ class VulkanMethod {
   // Called before the device context it rendered with is destroyed (the pipeline rebuilds it when
   // lights or geometry move): whatever the method keeps on that device must go now.
   virtual void release_device() {}
+  // Method::save_history and restore_history for what the Vulkan side keeps from frame to frame.
+  virtual std::vector<uint8_t> save_history() const { return {}; }
+  virtual void restore_history(std::span<const uint8_t> bytes, bool posed) {}
 };
 
 // The Vulkan side of `method`, which it refers to and which must outlive it. Throws sst::Error

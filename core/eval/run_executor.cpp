@@ -181,14 +181,11 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
     record["time_budget_ms"] = run.time_budget_ms;
   }
   if (resumed) record["resumed_at_frame"] = progress.state.next;
-  // ReSTIR DI's history, like a non-resumable method's state, lives in the renderer, not in the
-  // checkpoint.
-  const bool resumable = find_method(options.method).resumable && !(restir_direct(options) && options.restir.temporal);
+  // A non-resumable method's frame-to-frame state is not in the checkpoint (ReSTIR's histories are).
+  const bool resumable = find_method(options.method).resumable;
   if (!resumable)
-    record["checkpoint"] = restir_direct(options) && options.restir.temporal
-                               ? "none: ReSTIR DI's temporal history is not saved; an interrupted run starts over"
-                               : "none: method " + options.method +
-                                     " keeps frame-to-frame state of its own; an interrupted run starts over";
+    record["checkpoint"] =
+        "none: method " + options.method + " keeps frame-to-frame state of its own; an interrupted run starts over";
   const int measured = options.frames;
   options.frames = run.warmup_frames + measured;
   PoseRestorer restore(scene);

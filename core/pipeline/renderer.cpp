@@ -160,6 +160,33 @@ RenderResult FrameRenderer::render_with(Method& method, gpu::VulkanMethod* vulka
   return result;
 }
 
+void FrameRenderer::save_histories(SequenceState& state) const {
+#ifdef SST_HAVE_VULKAN
+  if (vulkan_method_) {
+    state.direct_history =
+        gpu_restir_history_ ? restir_history_bytes(gpu::download_restir_history(*gpu_restir_history_)) : std::vector<uint8_t>{};
+    state.method_history = vulkan_method_->save_history();
+    return;
+  }
+#endif
+  state.direct_history = restir_history_ ? restir_history_bytes(*restir_history_) : std::vector<uint8_t>{};
+  state.method_history = method_->save_history();
+}
+
+void FrameRenderer::restore_histories(const SequenceState& state, bool posed) {
+#ifdef SST_HAVE_VULKAN
+  if (vulkan_method_) {
+    if (!gpu_restir_history_) gpu_restir_history_ = std::make_unique<gpu::GpuRestirHistory>();
+    gpu::restore_restir_history(*gpu_restir_history_, restir_history_from_bytes(state.direct_history), posed);
+    vulkan_method_->restore_history(state.method_history, posed);
+    return;
+  }
+#endif
+  restir_history_ = std::make_unique<RestirHistory>(restir_history_from_bytes(state.direct_history));
+  restir_history_->posed = posed;
+  method_->restore_history(state.method_history, posed);
+}
+
 RenderResult render_frame(const Scene& scene, const RenderOptions& options, const nlohmann::json& method_params,
                           bool quiet) {
   FrameRenderer renderer(options, method_params, quiet);

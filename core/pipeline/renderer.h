@@ -6,6 +6,7 @@
 
 #include "core/accel/embree_accel.h"
 #include "core/lights/light_sampler.h"
+#include "core/pipeline/sequence_state.h"
 #include "core/render/frame.h"
 #include "core/render/method.h"
 #include "core/render/render_options.h"
@@ -55,6 +56,12 @@ class FrameRenderer {
   // The same frame's direct light and first-hit AOVs only (the path tracer with no bounce: what
   // every method's direct pass computes), for a frame whose indirect light is rendered apart.
   RenderResult render_direct(const Scene& scene, const Camera& camera, uint32_t seed);
+
+  // What frames hand to the next besides the image-space history: ReSTIR DI's history and the
+  // method's state, as bytes (SequenceState's `direct_history`, `method_history`). restore after
+  // prepare(), `posed` when the scene was posed anew since they were saved.
+  void save_histories(SequenceState& state) const;
+  void restore_histories(const SequenceState& state, bool posed);
 
   const RenderOptions& options() const { return options_; }  // resolved: backend, accel
   const EmbreeAccel& accel() const { return *accel_; }

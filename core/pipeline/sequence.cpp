@@ -106,9 +106,9 @@ class PostStages {
 class SequenceRunner {
  public:
   SequenceRunner(Scene& scene, const std::vector<KeyFramePath>& paths, const RenderOptions& options,
-                 const nlohmann::json& method_params, bool quiet, SequenceState& state)
+                 const nlohmann::json& method_params, bool quiet, SequenceState& state, bool keep_histories)
       : scene_(scene), paths_(paths), renderer_(options, method_params, quiet), options_(renderer_.options()),
-        state_(state) {
+        keep_histories_(keep_histories), state_(state) {
     camera_index_ = scene.find_camera(options_.camera);
     if (camera_index_ < 0) select_camera(scene, options_.camera);  // throws, listing the cameras
     resolve_resolution(scene.cameras[size_t(camera_index_)], options_.width, options_.height);
@@ -127,6 +127,10 @@ class SequenceRunner {
     moved.lights = apply_key_frame_paths(paths_, scene_, out.time) || moved.lights;
     // Cameras are read per frame; geometry and lights are built into the renderer.
     if (!prepared_ || moved.geometry || moved.lights) renderer_.prepare(scene_, timer);
+    // A sequence continued from a checkpoint gets its ReSTIR and method histories back, posed anew
+    // if this frame's pose differs from the rest pose (for an animation that moves every frame, as
+    // the uninterrupted run would have found).
+    if (!prepared_ && state_.has_previous) renderer_.restore_histories(state_, moved.geometry || moved.lights);
     prepared_ = true;
     const Camera& camera = scene_.cameras[size_t(camera_index_)];
     const uint32_t seed = frame_seed(options_.seed, out.index);
@@ -155,6 +159,7 @@ class SequenceRunner {
     state_.view = view;
     // Only posing moves vertices; a static scene's stay those of the first frame.
     if (moved.geometry) state_.positions = scene_.positions;
+    if (keep_histories_) renderer_.save_histories(state_);
     state_.next = position + 1;
     return out;
   }
@@ -248,6 +253,7 @@ class SequenceRunner {
   RenderOptions options_;
   int camera_index_ = 0;
   bool reuse_ = false, gbuffer_ = false, prepared_ = false;
+  bool keep_histories_;  // the caller keeps the state (to resume from it): save the histories into it
   SequenceState& state_;
 };
 
@@ -260,7 +266,7 @@ void render_sequence(Scene& scene, const std::vector<KeyFramePath>& paths, const
   SequenceState& s = state ? *state : own;
   if (s.next > options.frames) throw Error("a sequence state at frame " + std::to_string(s.next) + " of " +
                                            std::to_string(options.frames));
-  SequenceRunner runner(scene, paths, options, method_params, quiet, s);
+  SequenceRunner runner(scene, paths, options, method_params, quiet, s, state != nullptr);
   for (int i = s.next; i < options.frames; ++i) {
     SequenceFrame frame = runner.frame(i);
     on_frame(frame);

@@ -12,13 +12,15 @@ namespace {
 
 // The layout sizes are part of the magic: a build whose structs differ cannot misread the file.
 struct Header {
-  char magic[8] = {'S', 'S', 'T', 'S', 'E', 'Q', '1', '\0'};
+  char magic[8] = {'S', 'S', 'T', 'S', 'E', 'Q', '2', '\0'};
   uint32_t view_bytes = sizeof(glsl::ViewParams);
   uint32_t texel_bytes = sizeof(TemporalTexel);
   int32_t next = 0;
   int32_t has_previous = 0;
   uint64_t positions = 0;
   uint64_t texels = 0;
+  uint64_t direct_history = 0;  // bytes
+  uint64_t method_history = 0;
 };
 
 template <class T>
@@ -34,11 +36,15 @@ void write_sequence_state(const std::string& path, const SequenceState& state) {
   h.has_previous = state.has_previous ? 1 : 0;
   h.positions = state.positions.size();
   h.texels = state.temporal.size();
+  h.direct_history = state.direct_history.size();
+  h.method_history = state.method_history.size();
   std::string out;
   append(out, &h, 1);
   append(out, &state.view, 1);
   append(out, state.positions.data(), state.positions.size());
   append(out, state.temporal.data(), state.temporal.size());
+  append(out, state.direct_history.data(), state.direct_history.size());
+  append(out, state.method_history.data(), state.method_history.size());
   write_text_atomic(path, out);
 }
 
@@ -54,8 +60,11 @@ SequenceState read_sequence_state(const std::string& path) {
       h.texel_bytes != expected.texel_bytes)
     throw bad("another format");
   const uint64_t limit = bytes.size();
-  if (h.positions > limit / sizeof(vec3) || h.texels > limit / sizeof(TemporalTexel) ||
-      sizeof h + sizeof(glsl::ViewParams) + h.positions * sizeof(vec3) + h.texels * sizeof(TemporalTexel) != limit)
+  if (h.positions > limit / sizeof(vec3) || h.texels > limit / sizeof(TemporalTexel) || h.direct_history > limit ||
+      h.method_history > limit ||
+      sizeof h + sizeof(glsl::ViewParams) + h.positions * sizeof(vec3) + h.texels * sizeof(TemporalTexel) +
+              h.direct_history + h.method_history !=
+          limit)
     throw bad("its size does not match its counts");
   SequenceState s;
   s.next = h.next;
@@ -68,6 +77,10 @@ SequenceState read_sequence_state(const std::string& path) {
   p += h.positions * sizeof(vec3);
   s.temporal.resize(h.texels);
   std::memcpy(s.temporal.data(), p, h.texels * sizeof(TemporalTexel));
+  p += h.texels * sizeof(TemporalTexel);
+  s.direct_history.assign(p, p + h.direct_history);
+  p += h.direct_history;
+  s.method_history.assign(p, p + h.method_history);
   if (s.next < 0) throw bad("negative frame position");
   return s;
 }

@@ -2,9 +2,11 @@
 // on the CPU. Methods are created by name through the registry (core/pipeline/method_registry.h),
 // which lists each method's MethodInfo; sst-render, sst-eval and the tests reach them there.
 #pragma once
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,6 +49,12 @@ class Method {
   // keeps from frame to frame about the old pose is dropped here, as its Vulkan side's is with the
   // device (VulkanMethod::release_device), so that both backends go on alike.
   virtual void scene_posed() {}
+  // The state a method keeps from frame to frame, as bytes only it reads (empty: none), for
+  // sequence checkpoints; restore_history reads them back into a new method before its next frame,
+  // `posed` when the scene was posed anew since they were saved. A method with state of its own
+  // is resumable (MethodInfo::resumable) only if these two carry all of it.
+  virtual std::vector<uint8_t> save_history() const { return {}; }
+  virtual void restore_history(std::span<const uint8_t> bytes, bool posed) {}
 };
 
 // A method as the registry lists it: name -> description, parameter table, factory. Each method
@@ -57,8 +65,9 @@ struct MethodInfo {
   std::vector<ParamInfo> params;
   // Builds the method from its parameters; unknown keys are an error naming the key.
   std::function<std::unique_ptr<Method>(const nlohmann::json& params)> create;
-  // Whether an interrupted sequence can continue from the pipeline's SequenceState alone; false
-  // for a method that carries state of its own from frame to frame (gi10's caches).
+  // Whether an interrupted sequence can continue from its checkpoint (the pipeline's SequenceState
+  // with the method's save_history); false for a method that carries state of its own from frame
+  // to frame that save_history does not hold (gi10's caches).
   bool resumable = true;
 };
 

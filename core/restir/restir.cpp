@@ -1,5 +1,6 @@
 #include "core/restir/restir.h"
 
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "core/render/camera.h"
 #include "core/render/pixel_loop.h"
 #include "core/scene/scene_access.h"
+#include "core/util/error.h"
 
 namespace sst {
 // What the reuse passes read of the other pixels: the round's first hits, the previous stage's
@@ -59,6 +61,63 @@ RestirSampleSpace restir_sample_space(const glsl::LightHeader& lights) {
 bool restir_history_usable(bool valid, const glsl::ViewParams& view, const RestirSampleSpace& space,
                            const RestirPush& push, const RestirSampleSpace& now) {
   return valid && view.width == push.view.width && view.height == push.view.height && space == now;
+}
+
+namespace {
+// The layout sizes are part of the magic: a build whose structs differ cannot misread the bytes.
+struct RestirHistoryHeader {
+  char magic[8] = {'S', 'S', 'T', 'R', 'H', 'I', '1', '\0'};
+  uint32_t surface_bytes = sizeof(RestirSurface);
+  uint32_t reservoir_bytes = sizeof(RestirReservoir);
+  uint32_t view_bytes = sizeof(glsl::ViewParams);
+  RestirSampleSpace space;
+  uint64_t pixels = 0;
+};
+}  // namespace
+
+std::vector<uint8_t> restir_history_bytes(const RestirHistory& history) {
+  if (!history.valid) return {};
+  RestirHistoryHeader h;
+  h.space = history.space;
+  h.pixels = history.surfaces.size();
+  std::vector<uint8_t> out(sizeof h + sizeof history.view + h.pixels * (sizeof(RestirSurface) + sizeof(RestirReservoir)));
+  uint8_t* p = out.data();
+  auto put = [&](const void* data, size_t bytes) {
+    std::memcpy(p, data, bytes);
+    p += bytes;
+  };
+  put(&h, sizeof h);
+  put(&history.view, sizeof history.view);
+  put(history.surfaces.data(), h.pixels * sizeof(RestirSurface));
+  put(history.reservoirs.data(), h.pixels * sizeof(RestirReservoir));
+  return out;
+}
+
+RestirHistory restir_history_from_bytes(std::span<const uint8_t> bytes) {
+  RestirHistory history;
+  if (bytes.empty()) return history;
+  RestirHistoryHeader h, expected;
+  if (bytes.size() < sizeof h) throw Error("not a ReSTIR history of this build (too short)");
+  std::memcpy(&h, bytes.data(), sizeof h);
+  if (std::memcmp(h.magic, expected.magic, sizeof h.magic) != 0 || h.surface_bytes != expected.surface_bytes ||
+      h.reservoir_bytes != expected.reservoir_bytes || h.view_bytes != expected.view_bytes)
+    throw Error("not a ReSTIR history of this build (another format)");
+  const size_t per_pixel = sizeof(RestirSurface) + sizeof(RestirReservoir);
+  if (h.pixels > bytes.size() / per_pixel || sizeof h + sizeof history.view + h.pixels * per_pixel != bytes.size())
+    throw Error("not a ReSTIR history of this build (its size does not match its pixels)");
+  const uint8_t* p = bytes.data() + sizeof h;
+  std::memcpy(&history.view, p, sizeof history.view);
+  p += sizeof history.view;
+  if (uint64_t(history.view.width) * history.view.height != h.pixels)
+    throw Error("not a ReSTIR history of this build (its view does not match its pixels)");
+  history.surfaces.resize(h.pixels);
+  history.reservoirs.resize(h.pixels);
+  std::memcpy(history.surfaces.data(), p, h.pixels * sizeof(RestirSurface));
+  p += h.pixels * sizeof(RestirSurface);
+  std::memcpy(history.reservoirs.data(), p, h.pixels * sizeof(RestirReservoir));
+  history.space = h.space;
+  history.valid = true;
+  return history;
 }
 
 void add_restir_sums(std::span<const RestirTexel> sums, int spp, RestirKind kind, FrameOutput& frame) {

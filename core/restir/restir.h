@@ -6,6 +6,7 @@
 // their sums to the frame through add_restir_sums, so the backends give the same bits (with
 // --accel flat). The algorithm and its parameters: docs/restir.md.
 #pragma once
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -55,6 +56,11 @@ struct RestirHistory {
   bool valid = false;
   bool posed = false;
 };
+
+// A history as bytes for sequence checkpoints (Method::save_history; empty: no history) and back;
+// restir_history_from_bytes throws sst::Error when the bytes are not a history of this build.
+std::vector<uint8_t> restir_history_bytes(const RestirHistory& history);
+RestirHistory restir_history_from_bytes(std::span<const uint8_t> bytes);
 
 // The push constants every round of ctx starts from: the view, the ray offset, the reuse; the
 // caller adds its initial pass's fields.

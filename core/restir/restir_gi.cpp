@@ -50,6 +50,11 @@ PathTracerParams restir_gi_direct_params() {
   return p;
 }
 
+void RestirGi::restore_history(std::span<const uint8_t> bytes, bool posed) {
+  history_ = restir_history_from_bytes(bytes);
+  history_.posed = posed;
+}
+
 FrameOutput RestirGi::render(const RenderContext& ctx, StageTimer& timer) {
   // The direct light and the AOVs of the frame's samples; its indirect layer is zero.
   FrameOutput frame = PathTracer(restir_gi_direct_params()).render(ctx, timer);
@@ -64,7 +69,6 @@ MethodInfo restir_gi_method_info() {
       "ReSTIR GI (Ouyang et al.): per pixel one BRDF-sampled secondary vertex with the light a path from it brings "
       "back, resampled with the previous frame's and the neighbours' (pairwise MIS); direct light as every method's",
       [](const RestirGiParams& p) -> std::unique_ptr<Method> { return std::make_unique<RestirGi>(p); });
-  info.resumable = false;  // its history lives in the method, not in SequenceState
   return info;
 }
 

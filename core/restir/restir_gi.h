@@ -57,6 +57,8 @@ class RestirGi final : public Method {
   nlohmann::json params() const override;
   // The history's vertices and radiance belong to the old pose: the next frame validates them.
   void scene_posed() override { history_.posed = true; }
+  std::vector<uint8_t> save_history() const override { return restir_history_bytes(history_); }
+  void restore_history(std::span<const uint8_t> bytes, bool posed) override;
   const RestirGiParams& gi_params() const { return params_; }
 
  private:

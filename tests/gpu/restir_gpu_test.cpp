@@ -8,6 +8,7 @@
 #ifdef SST_HAVE_VULKAN
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "core/pipeline/renderer.h"
@@ -16,7 +17,9 @@
 #include "core/scene/key_frame_path.h"
 #include "core/scene/default_scene.h"
 #include "tests/analytic_scenes.h"
+#include "tests/core/eval/eval_test_util.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/test_util.h"
 
 namespace sst {
 namespace {
@@ -147,6 +150,20 @@ TEST(RestirGiVulkan, MovingSceneMatchesTheCpu) {
   expect_sequences_agree(load_gltf(std::string(SST_SOURCE_DIR) + "/scenes/animated_box.gltf"), o, {{"max_bounces", 2}},
                          "restir_gi, moving scene",
                          R"([{"light": "0", "keys": [{"time": 0, "translate": [0, 0, 0]}, {"time": 0.1, "translate": [1.5, 0, 0]}]}])");
+}
+
+// On Vulkan the histories live on the device: a checkpoint reads them back, and a resumed run
+// hands them to a new device. Runs with ReSTIR DI's temporal reuse and with restir_gi resume with
+// the numbers and image of the uninterrupted run.
+TEST(RestirGiVulkan, SequenceRunsWithReservoirHistoriesResume) {
+  SKIP_WITHOUT_GPU("restir_4");
+  for (const nlohmann::json& fields :
+       {nlohmann::json{{"method", "pt"}, {"max_bounces", 1}, {"spp", 1}, {"direct_sampler", "restir"}, {"backend", "vulkan"}},
+        nlohmann::json{{"method", "restir_gi"}, {"max_bounces", 2}, {"spp", 1}, {"backend", "vulkan"}}}) {
+    SCOPED_TRACE(fields.dump());
+    std::filesystem::path dir = test::temp_dir();
+    test::expect_resumes(test::tiny_sequence_run(fields), (dir / "whole").string(), (dir / "cut").string());
+  }
 }
 
 // restir_gi's secondary paths and reuse, through a sequence with a turning camera, diffuse and

@@ -153,52 +153,36 @@ TEST(Sweep, ShardSyntax) {
 // A sequence run interrupted after some frames continues from its checkpoint at the next frame,
 // with the numbers and image of the run that was never interrupted.
 TEST(Sweep, AnInterruptedSequenceRunResumesAtItsNextFrame) {
-  ExperimentConfig c = tiny_config({{"method", "sst"},
-                                    {"spp", 1},
-                                    {"frames", 4},
-                                    {"warmup_frames", 2},
-                                    {"temporal", true},
-                                    {"denoise", "svgf"},
-                                    {"paths", json::parse(R"([{"camera": "", "keys": [{"time": 0}, {"time": 1, "yaw_degrees": 20}]}])")}});
-  RunSpec run = expand_runs(c).at(0);
-  Scene scene = load_default_scene();
-  Image reference(24, 24);
-  for (size_t i = 0; i < reference.data.size(); ++i) reference.data[i] = 0.02f * float(i % 37);
-  int calls = 0, interrupt_at = -1;
-  FrameReference frame_reference = [&](int index, double, const Scene&) {
-    ++calls;
-    if (index == interrupt_at) throw Error("interrupted");
-    return RunReference{"fixed", json::object(), &reference};
-  };
   fs::path dir = test::temp_dir();
-  const std::string whole_dir = (dir / "whole").string(), cut_dir = (dir / "cut").string();
-  json whole = execute_run(scene, run, {}, frame_reference, whole_dir);
-  EXPECT_FALSE(has_checkpoint(whole_dir));
-  interrupt_at = 4;  // the third of the measured frames 2-5, after it rendered
-  EXPECT_THROW(execute_run(scene, run, {}, frame_reference, cut_dir), Error);
-  ASSERT_TRUE(has_checkpoint(cut_dir));
-  interrupt_at = -1;
-  calls = 0;
-  json resumed = execute_run(scene, run, {}, frame_reference, cut_dir);
-  EXPECT_EQ(calls, 2);  // frames 4 and 5 only
-  EXPECT_EQ(resumed["resumed_at_frame"], 4);
-  EXPECT_FALSE(has_checkpoint(cut_dir));
-  for (const char* key : {"metrics", "metrics_raw", "flicker", "flicker_raw", "spp"}) EXPECT_EQ(resumed[key], whole[key]) << key;
-  ASSERT_EQ(resumed["frames"].size(), 4u);
-  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(resumed["frames"][i]["metrics"], whole["frames"][i]["metrics"]) << i;
-  EXPECT_EQ(read_image(cut_dir + "/image.exr").data, read_image(whole_dir + "/image.exr").data);
+  const std::string cut_dir = (dir / "cut").string();
+  const RunSpec run =
+      test::tiny_sequence_run({{"method", "sst"}, {"vpls", 300}, {"spp", 1}, {"temporal", true}, {"denoise", "svgf"}});
+  const json whole = test::expect_resumes(run, (dir / "whole").string(), cut_dir);
 
   // A checkpoint of another spec is not continued: the run starts over and says why.
-  interrupt_at = 3;
-  EXPECT_THROW(execute_run(scene, run, {}, frame_reference, cut_dir), Error);
-  interrupt_at = -1;
-  calls = 0;
+  Scene scene = load_default_scene();
+  test::InterruptingReferences references;
+  references.interrupt_at = 3;
+  EXPECT_THROW(execute_run(scene, run, {}, references.function(), cut_dir), Error);
+  references.interrupt_at = -1;
+  references.calls = 0;
   RunSpec changed = run;
   changed.spec_hash = "another";
-  json restarted = execute_run(scene, changed, {}, frame_reference, cut_dir);
-  EXPECT_EQ(calls, 4);
+  json restarted = execute_run(scene, changed, {}, references.function(), cut_dir);
+  EXPECT_EQ(references.calls, 4);
   EXPECT_NE(restarted["warnings"].dump().find("checkpoint discarded"), std::string::npos) << restarted["warnings"];
   EXPECT_EQ(restarted["metrics"], whole["metrics"]);
+}
+
+// ReSTIR's histories are in the checkpoint: runs with ReSTIR DI's temporal reuse and with
+// restir_gi resume with the numbers of the uninterrupted run.
+TEST(Sweep, SequenceRunsWithReservoirHistoriesResume) {
+  for (const json& fields : {json{{"method", "pt"}, {"max_bounces", 1}, {"spp", 1}, {"direct_sampler", "restir"}},
+                             json{{"method", "restir_gi"}, {"max_bounces", 2}, {"spp", 1}}}) {
+    SCOPED_TRACE(fields.dump());
+    fs::path dir = test::temp_dir();
+    test::expect_resumes(test::tiny_sequence_run(fields), (dir / "whole").string(), (dir / "cut").string());
+  }
 }
 
 TEST(Sweep, CalibratedSppIsClampedToItsRange) {

@@ -12,7 +12,9 @@
 #include "core/pipeline/sequence.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
+#include "core/restir/restir.h"
 #include "core/scene/key_frame_path.h"
+#include "core/util/error.h"
 #include "tests/analytic_scenes.h"
 #include "tests/core/manylight/many_light_test_util.h"
 #include "tests/stat_util.h"
@@ -184,6 +186,42 @@ TEST(RestirGi, ValidatedHistoryLowersTheErrorUnderAMovingLight) {
   std::printf("moving light, fourth frame: indirect MSE with validated history %.2fx that with history dropped\n",
               validated / dropped);
   EXPECT_LT(validated, 0.9 * dropped);
+}
+
+// A history survives its bytes (sequence checkpoints) bit for bit; bytes of anything else are a
+// one-line error, and no history is no bytes.
+TEST(RestirGi, HistoryBytesRoundTrip) {
+  RestirHistory h;
+  h.view.width = 3;
+  h.view.height = 2;
+  h.surfaces.resize(6);
+  h.reservoirs.resize(6);
+  for (size_t i = 0; i < 6; ++i) {
+    h.surfaces[i].p = vec3(float(i), 1.0f, 2.0f);
+    h.reservoirs[i].light = uint32_t(i);
+    h.reservoirs[i].radiance = vec3(0.5f * float(i));
+  }
+  h.space = {7, 2, 40};
+  h.valid = true;
+  const std::vector<uint8_t> bytes = restir_history_bytes(h);
+  RestirHistory back = restir_history_from_bytes(bytes);
+  EXPECT_TRUE(back.valid);
+  EXPECT_EQ(back.space, h.space);
+  EXPECT_EQ(back.view.width, 3u);
+  EXPECT_EQ(restir_history_bytes(back), bytes);
+  EXPECT_TRUE(restir_history_bytes(RestirHistory{}).empty());
+  EXPECT_FALSE(restir_history_from_bytes({}).valid);
+  std::vector<uint8_t> cut(bytes.begin(), bytes.end() - 4);
+  EXPECT_THROW(restir_history_from_bytes(cut), Error);
+  std::vector<uint8_t> other = bytes;
+  other[0] = 'X';
+  try {
+    restir_history_from_bytes(other);
+    ADD_FAILURE() << "foreign bytes were read";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("ReSTIR history"), std::string::npos);
+  }
 }
 
 TEST(RestirGi, BadParametersAreErrorsThatNameThem) {

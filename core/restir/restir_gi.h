@@ -18,7 +18,7 @@ struct RestirGiParams {
   int max_bounces = 8;
   int rr_min_bounces = 3;
   bool reuse_temporal = true;
-  float reuse_temporal_cap = 20.0f;
+  float reuse_temporal_cap = 5.0f;
   int spatial_passes = 1;
   int neighbours = 5;
   float radius = 30.0f;

@@ -5,6 +5,7 @@
 
 #include "core/gi10/gi10_math.h"
 #include "core/restir/restir_layout.h"
+#include "core/util/error.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/path_trace_pass.h"
 
@@ -30,11 +31,15 @@ FrameOutput VulkanGi10::render(const RenderContext& context, const GpuRenderCont
                                                uint32_t(sizeof(glsl::Gi10Push))));
     });
   }
+  if (!parked_.empty()) {
+    method_.renderer().restore(parked_, *this);
+    parked_.clear();
+  }
   return method_.renderer().render(context, *this, timer);
 }
 
 void VulkanGi10::release_device() {
-  if (gpu_) method_.renderer().restart();
+  if (!buffers_.empty()) parked_ = method_.renderer().save(*this);
   pipelines_.clear();
   direct_pipeline_.reset();
   buffers_.clear();
@@ -66,6 +71,26 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   }
   bound_ = gpu_->scene_buffers();
   for (const auto& b : buffers_) bound_.push_back(b.get());
+}
+
+std::vector<std::vector<uint8_t>> VulkanGi10::save_buffers() const {
+  std::vector<std::vector<uint8_t>> out;
+  for (size_t b = kFrame + 1; b < kBufferCount; ++b) {
+    const uint8_t* p = static_cast<const uint8_t*>(buffers_[b]->data());
+    out.emplace_back(p, p + buffers_[b]->size());
+  }
+  return out;
+}
+
+void VulkanGi10::load_buffers(const std::vector<std::vector<uint8_t>>& buffers) {
+  if (buffers.size() != kBufferCount - 1)
+    throw Error("gi10 state: " + std::to_string(buffers.size()) + " buffers, expected " + std::to_string(kBufferCount - 1));
+  for (size_t b = kFrame + 1; b < kBufferCount; ++b) {
+    const std::vector<uint8_t>& bytes = buffers[b - 1];
+    if (bytes.size() != buffers_[b]->size())
+      throw Error("gi10 state: buffer " + std::to_string(b - 1) + " does not match the sizes it was saved at");
+    std::memcpy(buffers_[b]->data(), bytes.data(), bytes.size());
+  }
 }
 
 void VulkanGi10::begin_frame(const RenderContext&, const glsl::Gi10Frame& frame) {

@@ -16,7 +16,8 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
  public:
   explicit VulkanGi10(Gi10Method& method) : method_(method) {}
   FrameOutput render(const RenderContext& context, const GpuRenderContext& gpu, StageTimer& timer) override;
-  // The caches live on the device: a new device context starts the frames over (with warm-up).
+  // The caches live on the device: before a new device context (a pose change) they move to the
+  // host and come back with the next frame, so the frames go on as on the CPU.
   void release_device() override;
 
  private:
@@ -29,6 +30,8 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
   void read_pixels(std::vector<glsl::Gi10Pixel>& pixels) override;
   void write_feedback(const std::vector<glm::vec4>& image) override;
   FrameOutput direct(const RenderContext& context, StageTimer& timer) override;
+  std::vector<std::vector<uint8_t>> save_buffers() const override;
+  void load_buffers(const std::vector<std::vector<uint8_t>>& buffers) override;
 
   Gi10Method& method_;
   const GpuRenderContext* gpu_ = nullptr;
@@ -39,6 +42,8 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
   // In binding order after the scene's: frame constants, then the buffers of gi10_stages.h.
   std::vector<std::unique_ptr<GpuBuffer>> buffers_;
   std::vector<const GpuBuffer*> bound_;
+  // Gi10Renderer::save's bytes waiting for a device context (empty: none).
+  std::vector<uint8_t> parked_;
 };
 
 }  // namespace sst::gpu

@@ -133,8 +133,37 @@ class Gi10Cpu final : public Gi10Executor {
     p.max_bounces = 0;
     return PathTracer(p).render(context, timer);  // as every VPL method's direct pass
   }
+  std::vector<std::vector<uint8_t>> save_buffers() const override {
+    std::vector<std::vector<uint8_t>> out;
+    for_each_buffer(*this, [&](const auto& v) {
+      const uint8_t* p = reinterpret_cast<const uint8_t*>(v.data());
+      out.emplace_back(p, p + v.size() * sizeof(v[0]));
+    });
+    return out;
+  }
+  void load_buffers(const std::vector<std::vector<uint8_t>>& buffers) override {
+    size_t b = 0;
+    for_each_buffer(*this, [&](auto& v) {
+      const size_t bytes = v.size() * sizeof(v[0]);
+      if (b >= buffers.size() || buffers[b].size() != bytes)
+        throw Error("gi10 state: buffer " + std::to_string(b) + " does not match the sizes it was saved at");
+      std::memcpy(v.data(), buffers[b].data(), bytes);
+      ++b;
+    });
+    if (b != buffers.size())
+      throw Error("gi10 state: " + std::to_string(buffers.size()) + " buffers, expected " + std::to_string(b));
+  }
 
  private:
+  // fn(vector) for every buffer of `self` (const or not) in gi10_buffers.h's order, VulkanGi10's.
+  template <class Self, class Fn>
+  static void for_each_buffer(Self& self, Fn&& fn) {
+    fn(self.pixels_), fn(self.emission_), fn(self.mask_), fn(self.radiance_), fn(self.sh_), fn(self.spawn_);
+    fn(self.rays_), fn(self.hash_), fn(self.values_), fn(self.accum_), fn(self.denoise_), fn(self.aux_);
+    fn(self.feedback_), fn(self.counters_), fn(self.output_), fn(self.ray_reservoirs_), fn(self.slot_reservoirs_);
+    fn(self.slot_surfaces_);
+  }
+
   const RenderContext* context_ = nullptr;
   glsl::Gi10Frame frame_{};
   std::vector<glsl::Gi10Pixel> pixels_;
@@ -265,6 +294,79 @@ FrameOutput Gi10Renderer::render(const RenderContext& context, Gi10Executor& exe
     }
   }
   return render_one(context, executor, timer, false);
+}
+
+namespace {
+// The layout sizes are part of the magic: a build whose structs differ cannot misread the bytes.
+struct Gi10StateHeader {
+  char magic[8] = {'S', 'S', 'T', 'G', 'I', '1', '0', '\0'};
+  uint32_t sizes_bytes = sizeof(Gi10Sizes);
+  uint32_t view_bytes = sizeof(glsl::ViewParams);
+  uint32_t frame = 0;
+  float view_length = 0.0f;
+  uint64_t buffers = 0;
+};
+}  // namespace
+
+std::vector<uint8_t> Gi10Renderer::save(const Gi10Executor& executor) const {
+  if (!started_) return {};
+  Gi10StateHeader h;
+  h.frame = frame_;
+  h.view_length = view_length_;
+  const std::vector<std::vector<uint8_t>> buffers = executor.save_buffers();
+  h.buffers = buffers.size();
+  std::vector<uint8_t> out;
+  auto put = [&](const void* data, size_t bytes) {
+    const uint8_t* p = static_cast<const uint8_t*>(data);
+    out.insert(out.end(), p, p + bytes);
+  };
+  put(&h, sizeof h);
+  put(&sizes_, sizeof sizes_);
+  put(&previous_view_, sizeof previous_view_);
+  for (const std::vector<uint8_t>& b : buffers) {
+    const uint64_t n = b.size();
+    put(&n, sizeof n);
+    put(b.data(), b.size());
+  }
+  return out;
+}
+
+void Gi10Renderer::restore(std::span<const uint8_t> bytes, Gi10Executor& executor) {
+  if (bytes.empty()) {
+    started_ = false;
+    return;
+  }
+  auto bad = [](const std::string& why) { return Error("not a gi10 state of this build (" + why + ")"); };
+  size_t at = 0;
+  auto get = [&](void* data, size_t n) {
+    if (n > bytes.size() - at) throw bad("too short");
+    std::memcpy(data, bytes.data() + at, n);
+    at += n;
+  };
+  Gi10StateHeader h, expected;
+  get(&h, sizeof h);
+  if (std::memcmp(h.magic, expected.magic, sizeof h.magic) != 0 || h.sizes_bytes != expected.sizes_bytes ||
+      h.view_bytes != expected.view_bytes)
+    throw bad("another format");
+  Gi10Sizes sizes;
+  get(&sizes, sizeof sizes);
+  get(&previous_view_, sizeof previous_view_);
+  if (h.buffers > bytes.size()) throw bad("its size does not match its buffers");
+  std::vector<std::vector<uint8_t>> buffers(h.buffers);
+  for (std::vector<uint8_t>& b : buffers) {
+    uint64_t n = 0;
+    get(&n, sizeof n);
+    if (n > bytes.size() - at) throw bad("too short");
+    b.assign(bytes.begin() + ptrdiff_t(at), bytes.begin() + ptrdiff_t(at + n));
+    at += n;
+  }
+  if (at != bytes.size()) throw bad("its size does not match its buffers");
+  sizes_ = sizes;
+  executor.allocate(sizes_);
+  executor.load_buffers(buffers);
+  frame_ = h.frame;
+  view_length_ = h.view_length;
+  started_ = true;
 }
 
 FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor& executor, StageTimer& timer,
@@ -456,7 +558,9 @@ MethodInfo gi10_method_info() {
       "GI-1.0 (Boisse et al. 2022): screen probes at 1/4 ray per pixel over a world-space hash-grid radiance cache, "
       "reprojected, filtered and denoised over frames (warm-up frames first), plus sst's direct pass",
       [](const Gi10Params& p) -> std::unique_ptr<Method> { return std::make_unique<Gi10Method>(p); });
-  info.resumable = false;  // its probes and cache live in the method, not in SequenceState
+  // Its state (save_history: probes and caches, about 210 MB with the default cache) is too large
+  // to save after every frame of a sweep.
+  info.resumable = false;
   return info;
 }
 

@@ -58,6 +58,10 @@ class Gi10Executor {
   virtual void write_feedback(const std::vector<glm::vec4>& image) = 0;
   // The direct pass and first-hit AOVs of every method (pt with max_bounces 0) for this frame.
   virtual FrameOutput direct(const RenderContext& context, StageTimer& timer) = 0;
+  // Every buffer's bytes but the frame constants', in gi10_buffers.h's order; load_buffers after
+  // allocate() with the sizes they were saved at (Gi10Renderer::save and restore).
+  virtual std::vector<std::vector<uint8_t>> save_buffers() const = 0;
+  virtual void load_buffers(const std::vector<std::vector<uint8_t>>& buffers) = 0;
 };
 
 // The frames of one GI-1.0 run: its persistent state is the executor's buffers plus what is kept
@@ -68,8 +72,13 @@ class Gi10Renderer {
   // Frame `context.frame` of a sequence; frame 0 (or a new size) starts over with warm-up frames.
   FrameOutput render(const RenderContext& context, Gi10Executor& executor, StageTimer& timer);
   const Gi10Params& params() const { return params_; }
-  // The next frame starts over with warm-up, as frame 0 does (the executor lost its buffers).
-  void restart() { started_ = false; }
+  // The run's state, this object's and the executor's buffers, as bytes (empty before the first
+  // frame): Gi10Method::save_history's, and on Vulkan what carries the caches to the next device
+  // context. restore() allocates
+  // `executor` and loads them, and the next frame goes on as if never interrupted. Throws
+  // sst::Error when the bytes are not such a state of this build.
+  std::vector<uint8_t> save(const Gi10Executor& executor) const;
+  void restore(std::span<const uint8_t> bytes, Gi10Executor& executor);
 
  private:
   FrameOutput render_one(const RenderContext& context, Gi10Executor& executor, StageTimer& timer, bool warmup);
@@ -89,6 +98,9 @@ class Gi10Method final : public Method {
   ~Gi10Method() override;
   FrameOutput render(const RenderContext& context, StageTimer& timer) override;
   nlohmann::json params() const override;
+  // Its whole state (Gi10Renderer::save): the caches are in world space and outlive pose changes.
+  std::vector<uint8_t> save_history() const override { return renderer_.save(*cpu_); }
+  void restore_history(std::span<const uint8_t> bytes, bool) override { renderer_.restore(bytes, *cpu_); }
   Gi10Renderer& renderer() { return renderer_; }
 
  private:

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/filter/filters.h"
+#include "core/pipeline/method_registry.h"
 #include "core/render/camera.h"
 #include "core/render/centre_gbuffer.h"
 #include "core/rng/hash_rng.h"
@@ -253,7 +254,7 @@ class SequenceRunner {
   RenderOptions options_;
   int camera_index_ = 0;
   bool reuse_ = false, gbuffer_ = false, prepared_ = false;
-  bool keep_histories_;  // the caller keeps the state (to resume from it): save the histories into it
+  bool keep_histories_;  // the caller keeps the state to resume from it: save the histories into it
   SequenceState& state_;
 };
 
@@ -266,7 +267,8 @@ void render_sequence(Scene& scene, const std::vector<KeyFramePath>& paths, const
   SequenceState& s = state ? *state : own;
   if (s.next > options.frames) throw Error("a sequence state at frame " + std::to_string(s.next) + " of " +
                                            std::to_string(options.frames));
-  SequenceRunner runner(scene, paths, options, method_params, quiet, s, state != nullptr);
+  SequenceRunner runner(scene, paths, options, method_params, quiet, s,
+                        state != nullptr && find_method(options.method).resumable);
   for (int i = s.next; i < options.frames; ++i) {
     SequenceFrame frame = runner.frame(i);
     on_frame(frame);

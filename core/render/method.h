@@ -50,9 +50,9 @@ class Method {
   // device (VulkanMethod::release_device), so that both backends go on alike.
   virtual void scene_posed() {}
   // The state a method keeps from frame to frame, as bytes only it reads (empty: none), for
-  // sequence checkpoints; restore_history reads them back into a new method before its next frame,
-  // `posed` when the scene was posed anew since they were saved. A method with state of its own
-  // is resumable (MethodInfo::resumable) only if these two carry all of it.
+  // sequence checkpoints of resumable methods (MethodInfo::resumable); restore_history reads them
+  // back into a new method before its next frame, `posed` when the scene was posed anew since they
+  // were saved. A method with state of its own is resumable only if these two carry all of it.
   virtual std::vector<uint8_t> save_history() const { return {}; }
   virtual void restore_history(std::span<const uint8_t> bytes, bool posed) {}
 };

@@ -1,5 +1,5 @@
 // gi10 end to end on the CPU: the analytic sphere (test E1 of docs/design/gi10.md) with both SH weights,
-// determinism over thread counts, feedback adding bounces, and parameter errors.
+// determinism over thread counts, its saved state, feedback adding bounces, and parameter errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,9 @@
 #include "core/gi10/gi10_math.h"
 #include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
+#include "core/render/camera.h"
 #include "core/scene/default_scene.h"
+#include "core/util/error.h"
 #include "tests/analytic_scenes.h"
 
 namespace sst {
@@ -122,6 +124,38 @@ TEST(Gi10Method, GivesTheSameBitsWithOneThreadAndTwo) {
     EXPECT_EQ(one.frame.color.data, two.frame.color.data);
     EXPECT_GT(one.frame.counters.bounce_rays, 0u);
   }
+}
+
+// Its saved state (save_history) is all of it: a new method restored from the state after three
+// frames renders the fourth frame with the bits of the method it came from.
+TEST(Gi10Method, ASavedStateGoesOnAsTheRunItCameFrom) {
+  Scene scene = load_default_scene();
+  RenderOptions o;
+  o.method = "gi10";
+  o.width = 48;
+  o.height = 36;
+  o.spp = 1;
+  o.diffuse_only = true;
+  EmbreeAccel accel(scene);
+  LightSampler lights(scene);
+  PinholeCamera camera(scene.cameras.at(0), o.width, o.height);
+  const nlohmann::json params = {{"cache_warmup_frames", 4}, {"world_restir", true}};
+  std::unique_ptr<Method> a = find_method("gi10").create(params), b = find_method("gi10").create(params);
+  auto frame = [&](Method& m, int index) {
+    RenderOptions fo = o;
+    fo.seed = uint32_t(1000 + index);
+    RenderContext context{scene, accel, lights, camera, fo, o.width, o.height, true, index};
+    StageTimer timer;
+    return m.render(context, timer).color;
+  };
+  EXPECT_TRUE(b->save_history().empty());  // nothing rendered yet
+  for (int i = 0; i < 3; ++i) frame(*a, i);
+  const std::vector<uint8_t> state = a->save_history();
+  b->restore_history(state, false);
+  EXPECT_EQ(b->save_history(), state);
+  EXPECT_EQ(frame(*b, 3).data, frame(*a, 3).data);
+  std::vector<uint8_t> cut(state.begin(), state.end() - 1);
+  EXPECT_THROW(b->restore_history(cut, false), Error);
 }
 
 TEST(Gi10Method, WorldRestirKeepsTheOneBounceMean) {

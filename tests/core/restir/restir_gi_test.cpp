@@ -106,7 +106,7 @@ TEST(RestirGi, ValidatedHistoryUnderAMovingLightConvergesToThePathTracer) {
 // Where geometry moves, the history's vertices were drawn from what its pixels saw in the old pose,
 // while the MIS weights test visibility in the new one: where the box uncovers surfaces the history
 // could not have drawn, the pixel's own sample gets too little weight (docs/restir.md). The fourth
-// frame's image mean (1 spp, 144 seeds) against pt's (16 spp, 36 seeds): measured -2.3%; without
+// frame's image mean (1 spp, 144 seeds) against pt's (16 spp, 36 seeds): measured -2.2%; without
 // testing the history's own sample for visibility in the new pose it was +38% (the box alone).
 TEST(RestirGi, ValidatedHistoryUnderMovingGeometryIsNearlyUnbiased) {
   std::vector<KeyFramePath> paths;

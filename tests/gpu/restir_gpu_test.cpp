@@ -111,8 +111,9 @@ void expect_sequences_agree(const Scene& scene, RenderOptions o, const nlohmann:
   }
 }
 
-// Temporal reuse through a turning camera: every frame of a sequence reprojects the last one's
-// reservoirs the same way on both backends.
+// Temporal reuse through a turning camera (every frame of a sequence reprojects the last one's
+// reservoirs) and under moving lights (every frame is posed anew: the history comes back to the
+// new device context and is evaluated in the new pose), the same way on both backends.
 TEST(RestirDiVulkan, SequencesWithTemporalReuseMatchTheCpu) {
   SKIP_WITHOUT_GPU("restir_1");
   RenderOptions o;
@@ -122,18 +123,6 @@ TEST(RestirDiVulkan, SequencesWithTemporalReuseMatchTheCpu) {
   o.direct_sampler = "restir";
   o.restir.candidates = 8;
   expect_sequences_agree(test::many_lights(31, 400, 5, 5, true), o, {{"max_bounces", 0}}, "restir di");
-}
-
-// Lights that move: every frame is posed anew (the device context made again), and the history
-// comes back to the new device and is evaluated in the new pose the same way on both backends.
-TEST(RestirDiVulkan, SequencesWithMovingLightsMatchTheCpu) {
-  SKIP_WITHOUT_GPU("restir_1");
-  RenderOptions o;
-  o.method = "pt";
-  o.spp = 1;
-  o.diffuse_only = true;
-  o.direct_sampler = "restir";
-  o.restir.candidates = 8;
   expect_sequences_agree(test::many_lights(32, 40, 4, 0, false), o, {{"max_bounces", 0}}, "restir di, moving lights",
                          R"([{"light": "0", "keys": [{"time": 0, "translate": [0, 0, 0]}, {"time": 0.1, "translate": [1.2, 0, 0.4]}]},
                              {"light": "1", "keys": [{"time": 0, "translate": [0, 0, 0]}, {"time": 0.1, "translate": [-1, 0, 0]}]}])");

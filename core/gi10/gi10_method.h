@@ -74,9 +74,8 @@ class Gi10Renderer {
   const Gi10Params& params() const { return params_; }
   // The run's state, this object's and the executor's buffers, as bytes (empty before the first
   // frame): Gi10Method::save_history's, and on Vulkan what carries the caches to the next device
-  // context. restore() allocates
-  // `executor` and loads them, and the next frame goes on as if never interrupted. Throws
-  // sst::Error when the bytes are not such a state of this build.
+  // context. restore() allocates `executor` and loads them, and the next frame goes on as if never
+  // interrupted. Throws sst::Error when the bytes are not such a state of this build.
   std::vector<uint8_t> save(const Gi10Executor& executor) const;
   void restore(std::span<const uint8_t> bytes, Gi10Executor& executor);
 

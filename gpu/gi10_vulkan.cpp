@@ -73,6 +73,14 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   for (const auto& b : buffers_) bound_.push_back(b.get());
 }
 
+std::vector<uint8_t> VulkanGi10::save_history() const {
+  return buffers_.empty() ? parked_ : method_.renderer().save(*this);
+}
+
+void VulkanGi10::restore_history(std::span<const uint8_t> bytes, bool) {
+  parked_.assign(bytes.begin(), bytes.end());  // loaded with the next frame, on its device context
+}
+
 std::vector<std::vector<uint8_t>> VulkanGi10::save_buffers() const {
   std::vector<std::vector<uint8_t>> out;
   for (size_t b = kFrame + 1; b < kBufferCount; ++b) {

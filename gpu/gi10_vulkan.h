@@ -19,6 +19,8 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
   // The caches live on the device: before a new device context (a pose change) they move to the
   // host and come back with the next frame, so the frames go on as on the CPU.
   void release_device() override;
+  std::vector<uint8_t> save_history() const override;
+  void restore_history(std::span<const uint8_t> bytes, bool posed) override;
 
  private:
   void allocate(const Gi10Sizes& sizes) override;

@@ -181,7 +181,7 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
     record["time_budget_ms"] = run.time_budget_ms;
   }
   if (resumed) record["resumed_at_frame"] = progress.state.next;
-  // A non-resumable method's frame-to-frame state is not in the checkpoint (ReSTIR's histories are).
+  // A non-resumable method's frame-to-frame state is not in the checkpoint (save_history's is).
   const bool resumable = find_method(options.method).resumable;
   if (!resumable)
     record["checkpoint"] =

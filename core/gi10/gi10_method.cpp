@@ -11,6 +11,7 @@
 #include "core/pt/path_tracer.h"
 #include "core/render/camera.h"
 #include "core/render/view_length.h"
+#include "core/util/zero_runs.h"
 
 #include "core/gi10/gi10_cpu.h"
 
@@ -323,10 +324,11 @@ std::vector<uint8_t> Gi10Renderer::save(const Gi10Executor& executor) const {
   put(&h, sizeof h);
   put(&sizes_, sizeof sizes_);
   put(&previous_view_, sizeof previous_view_);
+  // The caches are mostly empty hash tiles: their zero words are stored as counts.
   for (const std::vector<uint8_t>& b : buffers) {
     const uint64_t n = b.size();
     put(&n, sizeof n);
-    put(b.data(), b.size());
+    zero_runs_encode(b, out);
   }
   return out;
 }
@@ -356,9 +358,12 @@ void Gi10Renderer::restore(std::span<const uint8_t> bytes, Gi10Executor& executo
   for (std::vector<uint8_t>& b : buffers) {
     uint64_t n = 0;
     get(&n, sizeof n);
-    if (n > bytes.size() - at) throw bad("too short");
-    b.assign(bytes.begin() + ptrdiff_t(at), bytes.begin() + ptrdiff_t(at + n));
-    at += n;
+    if (n > (uint64_t(1) << 40)) throw bad("a buffer of " + std::to_string(n) + " bytes");
+    try {
+      at += zero_runs_decode(bytes.subspan(at), size_t(n), b);
+    } catch (const Error& e) {
+      throw bad(e.what());
+    }
   }
   if (at != bytes.size()) throw bad("its size does not match its buffers");
   sizes_ = sizes;
@@ -558,9 +563,6 @@ MethodInfo gi10_method_info() {
       "GI-1.0 (Boisse et al. 2022): screen probes at 1/4 ray per pixel over a world-space hash-grid radiance cache, "
       "reprojected, filtered and denoised over frames (warm-up frames first), plus sst's direct pass",
       [](const Gi10Params& p) -> std::unique_ptr<Method> { return std::make_unique<Gi10Method>(p); });
-  // Its state (save_history: probes and caches, about 210 MB with the default cache) is too large
-  // to save after every frame of a sweep.
-  info.resumable = false;
   return info;
 }
 

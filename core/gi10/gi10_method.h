@@ -97,7 +97,8 @@ class Gi10Method final : public Method {
   ~Gi10Method() override;
   FrameOutput render(const RenderContext& context, StageTimer& timer) override;
   nlohmann::json params() const override;
-  // Its whole state (Gi10Renderer::save): the caches are in world space and outlive pose changes.
+  // Its whole state (Gi10Renderer::save), for sequence checkpoints: the caches are in world space
+  // and outlive pose changes.
   std::vector<uint8_t> save_history() const override { return renderer_.save(*cpu_); }
   void restore_history(std::span<const uint8_t> bytes, bool) override { renderer_.restore(bytes, *cpu_); }
   Gi10Renderer& renderer() { return renderer_; }

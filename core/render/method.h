@@ -67,7 +67,7 @@ struct MethodInfo {
   std::function<std::unique_ptr<Method>(const nlohmann::json& params)> create;
   // Whether an interrupted sequence can continue from its checkpoint (the pipeline's SequenceState
   // with the method's save_history); false for a method that carries state of its own from frame
-  // to frame that save_history does not hold (gi10's caches).
+  // to frame that save_history does not hold (every method's does now).
   bool resumable = true;
 };
 

@@ -8,13 +8,16 @@
 #ifdef SST_HAVE_VULKAN
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/pipeline/renderer.h"
 #include "core/pipeline/sequence.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
 #include "core/scene/key_frame_path.h"
+#include "tests/core/eval/eval_test_util.h"
 #include "tests/gpu/gpu_test_util.h"
+#include "tests/test_util.h"
 
 namespace sst {
 namespace {
@@ -111,6 +114,16 @@ TEST(Gi10Vulkan, SequencesOfAMovingSceneEqualTheCpu) {
     std::printf("gi10, moving scene, frame %zu: relative RMSE vulkan vs cpu %.3g\n", f, rel);
     EXPECT_LT(rel, 1e-6) << "frame " << f;
   }
+}
+
+// A gi10 run on Vulkan interrupted and resumed from its checkpoint (the caches read back from the
+// device, then handed to a new one) ends with the numbers and image of the uninterrupted run.
+TEST(Gi10Vulkan, AnInterruptedRunResumes) {
+  if (std::string why = test::gpu_unavailable("gi10_0"); !why.empty()) GTEST_SKIP() << why;
+  const std::filesystem::path dir = test::temp_dir();
+  test::expect_resumes(
+      test::tiny_sequence_run({{"method", "gi10"}, {"cache_warmup_frames", 2}, {"spp", 1}, {"backend", "vulkan"}}),
+      (dir / "whole").string(), (dir / "cut").string());
 }
 
 }  // namespace

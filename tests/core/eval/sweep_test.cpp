@@ -174,11 +174,12 @@ TEST(Sweep, AnInterruptedSequenceRunResumesAtItsNextFrame) {
   EXPECT_EQ(restarted["metrics"], whole["metrics"]);
 }
 
-// ReSTIR's histories are in the checkpoint: runs with ReSTIR DI's temporal reuse and with
-// restir_gi resume with the numbers of the uninterrupted run.
-TEST(Sweep, SequenceRunsWithReservoirHistoriesResume) {
+// The state methods keep from frame to frame is in the checkpoint: runs with ReSTIR DI's temporal
+// reuse, with restir_gi and with gi10 resume with the numbers of the uninterrupted run.
+TEST(Sweep, SequenceRunsOfMethodsWithStateResume) {
   for (const json& fields : {json{{"method", "pt"}, {"max_bounces", 1}, {"spp", 1}, {"direct_sampler", "restir"}},
-                             json{{"method", "restir_gi"}, {"max_bounces", 2}, {"spp", 1}}}) {
+                             json{{"method", "restir_gi"}, {"max_bounces", 2}, {"spp", 1}},
+                             json{{"method", "gi10"}, {"cache_warmup_frames", 2}, {"spp", 1}}}) {
     SCOPED_TRACE(fields.dump());
     fs::path dir = test::temp_dir();
     test::expect_resumes(test::tiny_sequence_run(fields), (dir / "whole").string(), (dir / "cut").string());

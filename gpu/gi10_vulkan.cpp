@@ -5,7 +5,6 @@
 
 #include "core/gi10/gi10_math.h"
 #include "core/restir/restir_layout.h"
-#include "core/util/error.h"
 #include "gpu/gpu_render_context.h"
 #include "gpu/path_trace_pass.h"
 
@@ -81,24 +80,18 @@ void VulkanGi10::restore_history(std::span<const uint8_t> bytes, bool) {
   parked_.assign(bytes.begin(), bytes.end());  // loaded with the next frame, on its device context
 }
 
-std::vector<std::vector<uint8_t>> VulkanGi10::save_buffers() const {
-  std::vector<std::vector<uint8_t>> out;
-  for (size_t b = kFrame + 1; b < kBufferCount; ++b) {
-    const uint8_t* p = static_cast<const uint8_t*>(buffers_[b]->data());
-    out.emplace_back(p, p + buffers_[b]->size());
-  }
+std::vector<std::span<uint8_t>> VulkanGi10::buffers() {
+  std::vector<std::span<uint8_t>> out;
+  for (size_t b = kFrame + 1; b < kBufferCount; ++b)
+    out.emplace_back(static_cast<uint8_t*>(buffers_[b]->data()), buffers_[b]->size());
   return out;
 }
 
-void VulkanGi10::load_buffers(const std::vector<std::vector<uint8_t>>& buffers) {
-  if (buffers.size() != kBufferCount - 1)
-    throw Error("gi10 state: " + std::to_string(buffers.size()) + " buffers, expected " + std::to_string(kBufferCount - 1));
-  for (size_t b = kFrame + 1; b < kBufferCount; ++b) {
-    const std::vector<uint8_t>& bytes = buffers[b - 1];
-    if (bytes.size() != buffers_[b]->size())
-      throw Error("gi10 state: buffer " + std::to_string(b - 1) + " does not match the sizes it was saved at");
-    std::memcpy(buffers_[b]->data(), bytes.data(), bytes.size());
-  }
+std::vector<std::span<const uint8_t>> VulkanGi10::buffers() const {
+  std::vector<std::span<const uint8_t>> out;
+  for (size_t b = kFrame + 1; b < kBufferCount; ++b)
+    out.emplace_back(static_cast<const uint8_t*>(buffers_[b]->data()), buffers_[b]->size());
+  return out;
 }
 
 void VulkanGi10::begin_frame(const RenderContext&, const glsl::Gi10Frame& frame) {

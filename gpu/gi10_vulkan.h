@@ -32,8 +32,8 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
   void read_pixels(std::vector<glsl::Gi10Pixel>& pixels) override;
   void write_feedback(const std::vector<glm::vec4>& image) override;
   FrameOutput direct(const RenderContext& context, StageTimer& timer) override;
-  std::vector<std::vector<uint8_t>> save_buffers() const override;
-  void load_buffers(const std::vector<std::vector<uint8_t>>& buffers) override;
+  std::vector<std::span<const uint8_t>> buffers() const override;
+  std::vector<std::span<uint8_t>> buffers() override;
 
   Gi10Method& method_;
   const GpuRenderContext* gpu_ = nullptr;

@@ -134,35 +134,20 @@ class Gi10Cpu final : public Gi10Executor {
     p.max_bounces = 0;
     return PathTracer(p).render(context, timer);  // as every VPL method's direct pass
   }
-  std::vector<std::vector<uint8_t>> save_buffers() const override {
-    std::vector<std::vector<uint8_t>> out;
-    for_each_buffer(*this, [&](const auto& v) {
-      const uint8_t* p = reinterpret_cast<const uint8_t*>(v.data());
-      out.emplace_back(p, p + v.size() * sizeof(v[0]));
-    });
-    return out;
-  }
-  void load_buffers(const std::vector<std::vector<uint8_t>>& buffers) override {
-    size_t b = 0;
-    for_each_buffer(*this, [&](auto& v) {
-      const size_t bytes = v.size() * sizeof(v[0]);
-      if (b >= buffers.size() || buffers[b].size() != bytes)
-        throw Error("gi10 state: buffer " + std::to_string(b) + " does not match the sizes it was saved at");
-      std::memcpy(v.data(), buffers[b].data(), bytes);
-      ++b;
-    });
-    if (b != buffers.size())
-      throw Error("gi10 state: " + std::to_string(buffers.size()) + " buffers, expected " + std::to_string(b));
-  }
+  std::vector<std::span<const uint8_t>> buffers() const override { return byte_views<const uint8_t>(*this); }
+  std::vector<std::span<uint8_t>> buffers() override { return byte_views<uint8_t>(*this); }
 
  private:
-  // fn(vector) for every buffer of `self` (const or not) in gi10_buffers.h's order, VulkanGi10's.
-  template <class Self, class Fn>
-  static void for_each_buffer(Self& self, Fn&& fn) {
-    fn(self.pixels_), fn(self.emission_), fn(self.mask_), fn(self.radiance_), fn(self.sh_), fn(self.spawn_);
-    fn(self.rays_), fn(self.hash_), fn(self.values_), fn(self.accum_), fn(self.denoise_), fn(self.aux_);
-    fn(self.feedback_), fn(self.counters_), fn(self.output_), fn(self.ray_reservoirs_), fn(self.slot_reservoirs_);
-    fn(self.slot_surfaces_);
+  // The buffers of `self` (const or not) in gi10_buffers.h's order, VulkanGi10's, as bytes.
+  template <class Byte, class Self>
+  static std::vector<std::span<Byte>> byte_views(Self& self) {
+    std::vector<std::span<Byte>> out;
+    auto view = [&](auto& v) { out.emplace_back(reinterpret_cast<Byte*>(v.data()), v.size() * sizeof(v[0])); };
+    view(self.pixels_), view(self.emission_), view(self.mask_), view(self.radiance_), view(self.sh_);
+    view(self.spawn_), view(self.rays_), view(self.hash_), view(self.values_), view(self.accum_);
+    view(self.denoise_), view(self.aux_), view(self.feedback_), view(self.counters_), view(self.output_);
+    view(self.ray_reservoirs_), view(self.slot_reservoirs_), view(self.slot_surfaces_);
+    return out;
   }
 
   const RenderContext* context_ = nullptr;
@@ -314,7 +299,7 @@ std::vector<uint8_t> Gi10Renderer::save(const Gi10Executor& executor) const {
   Gi10StateHeader h;
   h.frame = frame_;
   h.view_length = view_length_;
-  const std::vector<std::vector<uint8_t>> buffers = executor.save_buffers();
+  const std::vector<std::span<const uint8_t>> buffers = executor.buffers();
   h.buffers = buffers.size();
   std::vector<uint8_t> out;
   auto put = [&](const void* data, size_t bytes) {
@@ -325,7 +310,7 @@ std::vector<uint8_t> Gi10Renderer::save(const Gi10Executor& executor) const {
   put(&sizes_, sizeof sizes_);
   put(&previous_view_, sizeof previous_view_);
   // The caches are mostly empty hash tiles: their zero words are stored as counts.
-  for (const std::vector<uint8_t>& b : buffers) {
+  for (std::span<const uint8_t> b : buffers) {
     const uint64_t n = b.size();
     put(&n, sizeof n);
     zero_runs_encode(b, out);
@@ -351,24 +336,25 @@ void Gi10Renderer::restore(std::span<const uint8_t> bytes, Gi10Executor& executo
       h.view_bytes != expected.view_bytes)
     throw bad("another format");
   Gi10Sizes sizes;
+  glsl::ViewParams previous_view;
   get(&sizes, sizeof sizes);
-  get(&previous_view_, sizeof previous_view_);
-  if (h.buffers > bytes.size()) throw bad("its size does not match its buffers");
-  std::vector<std::vector<uint8_t>> buffers(h.buffers);
-  for (std::vector<uint8_t>& b : buffers) {
+  get(&previous_view, sizeof previous_view);
+  executor.allocate(sizes);
+  const std::vector<std::span<uint8_t>> buffers = executor.buffers();
+  if (h.buffers != buffers.size()) throw bad(std::to_string(h.buffers) + " buffers, expected " + std::to_string(buffers.size()));
+  for (std::span<uint8_t> b : buffers) {
     uint64_t n = 0;
     get(&n, sizeof n);
-    if (n > (uint64_t(1) << 40)) throw bad("a buffer of " + std::to_string(n) + " bytes");
+    if (n != b.size()) throw bad("a buffer does not match the sizes it was saved at");
     try {
-      at += zero_runs_decode(bytes.subspan(at), size_t(n), b);
+      at += zero_runs_decode(bytes.subspan(at), b);
     } catch (const Error& e) {
       throw bad(e.what());
     }
   }
   if (at != bytes.size()) throw bad("its size does not match its buffers");
   sizes_ = sizes;
-  executor.allocate(sizes_);
-  executor.load_buffers(buffers);
+  previous_view_ = previous_view;
   frame_ = h.frame;
   view_length_ = h.view_length;
   started_ = true;

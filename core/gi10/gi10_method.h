@@ -8,6 +8,7 @@
 // on the CPU (this folder), dispatches of gpu/shaders/gi10.comp on Vulkan (gpu/gi10_vulkan.h).
 #pragma once
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/gi10/gi10_layout.h"
@@ -58,10 +59,10 @@ class Gi10Executor {
   virtual void write_feedback(const std::vector<glm::vec4>& image) = 0;
   // The direct pass and first-hit AOVs of every method (pt with max_bounces 0) for this frame.
   virtual FrameOutput direct(const RenderContext& context, StageTimer& timer) = 0;
-  // Every buffer's bytes but the frame constants', in gi10_buffers.h's order; load_buffers after
-  // allocate() with the sizes they were saved at (Gi10Renderer::save and restore).
-  virtual std::vector<std::vector<uint8_t>> save_buffers() const = 0;
-  virtual void load_buffers(const std::vector<std::vector<uint8_t>>& buffers) = 0;
+  // Every buffer but the frame constants', in gi10_buffers.h's order, as its bytes in place: what
+  // Gi10Renderer::save reads and restore writes after allocate().
+  virtual std::vector<std::span<const uint8_t>> buffers() const = 0;
+  virtual std::vector<std::span<uint8_t>> buffers() = 0;
 };
 
 // The frames of one GI-1.0 run: its persistent state is the executor's buffers plus what is kept
@@ -74,8 +75,8 @@ class Gi10Renderer {
   const Gi10Params& params() const { return params_; }
   // The run's state, this object's and the executor's buffers, as bytes (empty before the first
   // frame): Gi10Method::save_history's, and on Vulkan what carries the caches to the next device
-  // context. restore() allocates `executor` and loads them, and the next frame goes on as if never
-  // interrupted. Throws sst::Error when the bytes are not such a state of this build.
+  // context. restore() allocates `executor` and fills its buffers, and the next frame goes on as if
+  // never interrupted. Throws sst::Error when the bytes are not such a state of this build.
   std::vector<uint8_t> save(const Gi10Executor& executor) const;
   void restore(std::span<const uint8_t> bytes, Gi10Executor& executor);
 

@@ -1,5 +1,6 @@
 #include "core/util/zero_runs.h"
 
+#include <algorithm>
 #include <cstring>
 
 #include "core/util/error.h"
@@ -38,10 +39,10 @@ void zero_runs_encode(std::span<const uint8_t> bytes, std::vector<uint8_t>& out)
   out.insert(out.end(), bytes.begin() + ptrdiff_t(4 * words), bytes.end());
 }
 
-size_t zero_runs_decode(std::span<const uint8_t> in, size_t size, std::vector<uint8_t>& out) {
+size_t zero_runs_decode(std::span<const uint8_t> in, std::span<uint8_t> out) {
   auto bad = [] { return Error("not a zero-run encoding of this size (truncated or another format)"); };
-  out.assign(size, 0u);
-  const size_t words = size / 4;
+  std::fill(out.begin(), out.end(), uint8_t(0));
+  const size_t size = out.size(), words = size / 4;
   size_t at = 0, i = 0;
   auto get_u32 = [&] {
     if (in.size() - at < 4) throw bad();

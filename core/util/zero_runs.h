@@ -12,8 +12,8 @@ namespace sst {
 // Appends the encoding of `bytes` to `out`.
 void zero_runs_encode(std::span<const uint8_t> bytes, std::vector<uint8_t>& out);
 
-// Decodes an encoding of exactly `size` bytes from the front of `in` into `out` (resized to size)
-// and returns the encoded bytes it read. Throws sst::Error when `in` is not such an encoding.
-size_t zero_runs_decode(std::span<const uint8_t> in, size_t size, std::vector<uint8_t>& out);
+// Decodes an encoding of exactly out.size() bytes from the front of `in` into `out` and returns
+// the encoded bytes it read. Throws sst::Error when `in` is not such an encoding.
+size_t zero_runs_decode(std::span<const uint8_t> in, std::span<uint8_t> out);
 
 }  // namespace sst

@@ -20,8 +20,8 @@ TEST(ZeroRuns, BuffersComeBackByteForByte) {
       if ((i / 37) % 3 == 1 || i + 2 >= size) bytes[i] = uint8_t(1 + rng() % 255);
     std::vector<uint8_t> encoded = {0xAB};  // encodings append
     zero_runs_encode(bytes, encoded);
-    std::vector<uint8_t> back;
-    EXPECT_EQ(zero_runs_decode(std::span<const uint8_t>(encoded).subspan(1), size, back), encoded.size() - 1);
+    std::vector<uint8_t> back(size, 0xCD);
+    EXPECT_EQ(zero_runs_decode(std::span<const uint8_t>(encoded).subspan(1), back), encoded.size() - 1);
     EXPECT_EQ(back, bytes) << size;
   }
 }
@@ -37,12 +37,12 @@ TEST(ZeroRuns, ZerosShrinkToCounts) {
 TEST(ZeroRuns, CutOrForeignEncodingsAreErrors) {
   std::vector<uint8_t> bytes(400, 0u);
   for (size_t i = 100; i < 200; ++i) bytes[i] = 9;
-  std::vector<uint8_t> encoded, back;
+  std::vector<uint8_t> encoded, back(bytes.size()), longer(bytes.size() + 400);
   zero_runs_encode(bytes, encoded);
-  EXPECT_THROW(zero_runs_decode(std::span<const uint8_t>(encoded).first(encoded.size() - 1), bytes.size(), back), Error);
-  EXPECT_THROW(zero_runs_decode(encoded, bytes.size() + 400, back), Error);
+  EXPECT_THROW(zero_runs_decode(std::span<const uint8_t>(encoded).first(encoded.size() - 1), back), Error);
+  EXPECT_THROW(zero_runs_decode(encoded, longer), Error);
   const std::vector<uint8_t> nothing(8, 0u);  // runs of no words
-  EXPECT_THROW(zero_runs_decode(nothing, bytes.size(), back), Error);
+  EXPECT_THROW(zero_runs_decode(nothing, back), Error);
 }
 
 }  // namespace

@@ -55,13 +55,13 @@ size_t zero_runs_decode(std::span<const uint8_t> in, std::span<uint8_t> out) {
     const size_t zeros = get_u32(), literals = get_u32();
     if (zeros + literals == 0 || zeros + literals > words - i || 4 * literals > in.size() - at) throw bad();
     i += zeros;
-    std::memcpy(out.data() + 4 * i, in.data() + at, 4 * literals);
+    if (literals > 0) std::memcpy(out.data() + 4 * i, in.data() + at, 4 * literals);
     at += 4 * literals;
     i += literals;
   }
   const size_t tail = size - 4 * words;
   if (in.size() - at < tail) throw bad();
-  std::memcpy(out.data() + 4 * words, in.data() + at, tail);
+  if (tail > 0) std::memcpy(out.data() + 4 * words, in.data() + at, tail);  // no null pointers to memcpy
   return at + tail;
 }
 

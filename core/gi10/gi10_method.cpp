@@ -11,6 +11,7 @@
 #include "core/pt/path_tracer.h"
 #include "core/render/camera.h"
 #include "core/render/view_length.h"
+#include "core/util/byte_io.h"
 #include "core/util/zero_runs.h"
 
 #include "core/gi10/gi10_cpu.h"
@@ -302,17 +303,13 @@ std::vector<uint8_t> Gi10Renderer::save(const Gi10Executor& executor) const {
   const std::vector<std::span<const uint8_t>> buffers = executor.buffers();
   h.buffers = buffers.size();
   std::vector<uint8_t> out;
-  auto put = [&](const void* data, size_t bytes) {
-    const uint8_t* p = static_cast<const uint8_t*>(data);
-    out.insert(out.end(), p, p + bytes);
-  };
-  put(&h, sizeof h);
-  put(&sizes_, sizeof sizes_);
-  put(&previous_view_, sizeof previous_view_);
+  append_bytes(out, &h);
+  append_bytes(out, &sizes_);
+  append_bytes(out, &previous_view_);
   // The caches are mostly empty hash tiles: their zero words are stored as counts.
   for (std::span<const uint8_t> b : buffers) {
     const uint64_t n = b.size();
-    put(&n, sizeof n);
+    append_bytes(out, &n);
     zero_runs_encode(b, out);
   }
   return out;
@@ -323,36 +320,27 @@ void Gi10Renderer::restore(std::span<const uint8_t> bytes, Gi10Executor& executo
     started_ = false;
     return;
   }
-  auto bad = [](const std::string& why) { return Error("not a gi10 state of this build (" + why + ")"); };
-  size_t at = 0;
-  auto get = [&](void* data, size_t n) {
-    if (n > bytes.size() - at) throw bad("too short");
-    std::memcpy(data, bytes.data() + at, n);
-    at += n;
-  };
-  Gi10StateHeader h, expected;
-  get(&h, sizeof h);
+  ByteReader r(bytes, "not a gi10 state of this build");
+  const Gi10StateHeader h = r.read<Gi10StateHeader>();
+  const Gi10StateHeader expected;
   if (std::memcmp(h.magic, expected.magic, sizeof h.magic) != 0 || h.sizes_bytes != expected.sizes_bytes ||
       h.view_bytes != expected.view_bytes)
-    throw bad("another format");
-  Gi10Sizes sizes;
-  glsl::ViewParams previous_view;
-  get(&sizes, sizeof sizes);
-  get(&previous_view, sizeof previous_view);
+    throw r.bad("another format");
+  const Gi10Sizes sizes = r.read<Gi10Sizes>();
+  const glsl::ViewParams previous_view = r.read<glsl::ViewParams>();
   executor.allocate(sizes);
   const std::vector<std::span<uint8_t>> buffers = executor.buffers();
-  if (h.buffers != buffers.size()) throw bad(std::to_string(h.buffers) + " buffers, expected " + std::to_string(buffers.size()));
+  if (h.buffers != buffers.size())
+    throw r.bad(std::to_string(h.buffers) + " buffers, expected " + std::to_string(buffers.size()));
   for (std::span<uint8_t> b : buffers) {
-    uint64_t n = 0;
-    get(&n, sizeof n);
-    if (n != b.size()) throw bad("a buffer does not match the sizes it was saved at");
+    if (r.read<uint64_t>() != b.size()) throw r.bad("a buffer does not match the sizes it was saved at");
     try {
-      at += zero_runs_decode(bytes.subspan(at), b);
+      r.skip(zero_runs_decode(r.rest(), b));
     } catch (const Error& e) {
-      throw bad(e.what());
+      throw r.bad(e.what());
     }
   }
-  if (at != bytes.size()) throw bad("its size does not match its buffers");
+  if (r.left() != 0) throw r.bad("its size does not match its buffers");
   sizes_ = sizes;
   previous_view_ = previous_view;
   frame_ = h.frame;

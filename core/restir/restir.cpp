@@ -9,6 +9,7 @@
 #include "core/render/camera.h"
 #include "core/render/pixel_loop.h"
 #include "core/scene/scene_access.h"
+#include "core/util/byte_io.h"
 #include "core/util/error.h"
 
 namespace sst {
@@ -80,41 +81,29 @@ std::vector<uint8_t> restir_history_bytes(const RestirHistory& history) {
   RestirHistoryHeader h;
   h.space = history.space;
   h.pixels = history.surfaces.size();
-  std::vector<uint8_t> out(sizeof h + sizeof history.view + h.pixels * (sizeof(RestirSurface) + sizeof(RestirReservoir)));
-  uint8_t* p = out.data();
-  auto put = [&](const void* data, size_t bytes) {
-    std::memcpy(p, data, bytes);
-    p += bytes;
-  };
-  put(&h, sizeof h);
-  put(&history.view, sizeof history.view);
-  put(history.surfaces.data(), h.pixels * sizeof(RestirSurface));
-  put(history.reservoirs.data(), h.pixels * sizeof(RestirReservoir));
+  std::vector<uint8_t> out;
+  append_bytes(out, &h);
+  append_bytes(out, &history.view);
+  append_bytes(out, history.surfaces.data(), h.pixels);
+  append_bytes(out, history.reservoirs.data(), h.pixels);
   return out;
 }
 
 RestirHistory restir_history_from_bytes(std::span<const uint8_t> bytes) {
   RestirHistory history;
   if (bytes.empty()) return history;
-  RestirHistoryHeader h, expected;
-  if (bytes.size() < sizeof h) throw Error("not a ReSTIR history of this build (too short)");
-  std::memcpy(&h, bytes.data(), sizeof h);
+  ByteReader r(bytes, "not a ReSTIR history of this build");
+  const RestirHistoryHeader h = r.read<RestirHistoryHeader>();
+  const RestirHistoryHeader expected;
   if (std::memcmp(h.magic, expected.magic, sizeof h.magic) != 0 || h.surface_bytes != expected.surface_bytes ||
       h.reservoir_bytes != expected.reservoir_bytes || h.view_bytes != expected.view_bytes)
-    throw Error("not a ReSTIR history of this build (another format)");
-  const size_t per_pixel = sizeof(RestirSurface) + sizeof(RestirReservoir);
-  if (h.pixels > bytes.size() / per_pixel || sizeof h + sizeof history.view + h.pixels * per_pixel != bytes.size())
-    throw Error("not a ReSTIR history of this build (its size does not match its pixels)");
-  const uint8_t* p = bytes.data() + sizeof h;
-  std::memcpy(&history.view, p, sizeof history.view);
-  p += sizeof history.view;
+    throw r.bad("another format");
+  r.read(&history.view);
   if (uint64_t(history.view.width) * history.view.height != h.pixels)
-    throw Error("not a ReSTIR history of this build (its view does not match its pixels)");
-  history.surfaces.resize(h.pixels);
-  history.reservoirs.resize(h.pixels);
-  std::memcpy(history.surfaces.data(), p, h.pixels * sizeof(RestirSurface));
-  p += h.pixels * sizeof(RestirSurface);
-  std::memcpy(history.reservoirs.data(), p, h.pixels * sizeof(RestirReservoir));
+    throw r.bad("its view does not match its pixels");
+  r.read(history.surfaces, h.pixels);
+  r.read(history.reservoirs, h.pixels);
+  if (r.left() != 0) throw r.bad("its size does not match its pixels");
   history.space = h.space;
   history.valid = true;
   return history;

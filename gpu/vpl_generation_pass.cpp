@@ -127,7 +127,7 @@ VplSet generate_vpls_gpu(const VulkanContext& context, const GpuScene& gpu_scene
     uint64_t capacity = batch_capacity(context, max_bounces);
     if (max_batch_paths > 0) capacity = std::min(capacity, max_batch_paths);
     VplGenerationPush push{seed, 0, 0, uint32_t(max_bounces), uint32_t(params.vpl_min_bounces), diffuse_only ? 1u : 0u,
-                 scene_ray_epsilon(scene), 0, focus.center, focus.radius};
+                 scene_ray_epsilon(scene), params.focus_bounces, focus.center, focus.radius};
     std::vector<PathRecord> records;
     while (g.vpls.size() < target && g.traced < max_paths) {
       uint64_t batch = vpl_batch_paths(target - g.vpls.size(), g.deposited, g.traced, params);

@@ -43,6 +43,18 @@ SST_FUNC vec3 sample_uniform_sphere(float u1, float u2) {
 // 1 / (4 pi) rounded to float.
 SST_CONSTANT float kUniformSpherePdf = 0.0795774715f;
 
+// Uniform direction in the cone about +z whose half-angle theta_max has 1 - cos(theta_max) =
+// `one_minus_cos`; pdf = 1 / (2 pi one_minus_cos). The cone is given by 1 - cos because a narrow
+// one (a room seen from kilometres away) has a cos that float rounds to 1.
+SST_FUNC vec3 sample_uniform_cone(float u1, float u2, float one_minus_cos) {
+  SST_PRECISE float z = u1 * one_minus_cos;  // 1 - cos(theta)
+  SST_PRECISE float s2 = z * (2.0f - z);
+  float s = sqrt(max(0.0f, s2));
+  SST_PRECISE float phi = 2.0f * kPi * u2;
+  SST_PRECISE vec3 d = vec3(s * accurate_cos(phi), s * accurate_sin(phi), 1.0f - z);
+  return d;
+}
+
 // Uniform point on a triangle as barycentrics (b0, b1); b2 = 1 - b0 - b1. Heitz's low-distortion
 // mapping would also do; the square-root warp is the classic, exact one.
 SST_FUNC vec2 sample_uniform_triangle(float u1, float u2) {

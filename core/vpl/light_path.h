@@ -4,6 +4,8 @@
 // cosine-weighted bounces with Russian roulette on the albedo after min_bounces. The path is a pure
 // function of (seed, path) through HashRng(seed, path, 0, kVplStream), with its draws in a fixed
 // order: pick, position (2), direction (2), then per hit the bounce direction (2) and roulette (1).
+// A bounce from outside the view's surroundings aims part of its directions at them
+// (light_path_bounce).
 //
 // Hooks, besides the scene's, the lights' and the ray queries (core/pt/trace_path.h lists those):
 //   VPL_CTX_PARAM / VPL_CTX       where the VPLs go
@@ -16,6 +18,7 @@
 #include "core/accel/ray_offset.h"
 #include "core/rng/hash_rng.h"
 #include "core/sampling/sampling.h"
+#include "core/vpl/light_path_bounce.h"
 #include "core/vpl/light_path_layout.h"
 #include "core/vpl/vpl_albedo.h"
 
@@ -33,10 +36,12 @@ SST_FUNC vec2 light_path_next_2d(SST_INOUT(HashRng) rng) {
   return vec2(x, y);
 }
 
-// Light path `path` (directional lights aiming at `focus`): its VPLs through VPL_DEPOSIT; returns
-// (deposits, rays traced), deposits kLightPathOverflow where a traversal gave up.
+// Light path `path` (directional lights aiming at `focus`, bounces from outside it too with share
+// `focus_bounces`): its VPLs through VPL_DEPOSIT; returns (deposits, rays traced), deposits
+// kLightPathOverflow where a traversal gave up.
 SST_FUNC uvec2 trace_light_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM VPL_CTX_PARAM uint seed, uint path,
-                                int max_bounces, int min_bounces, bool diffuse_only, SST_IN(EmissionFocus) focus) {
+                                int max_bounces, int min_bounces, bool diffuse_only, SST_IN(EmissionFocus) focus,
+                                float focus_bounces) {
   HashRng rng = hash_rng(seed, path, 0u, kVplStream);
   float u_pick = hash_rng_next(rng);
   vec2 u_pos = light_path_next_2d(rng);
@@ -71,10 +76,12 @@ SST_FUNC uvec2 trace_light_path(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM VP
       SST_PRECISE vec3 b = beta / survive;
       beta = b;
     }
-    // Cosine-weighted about the shading normal: f cos / pdf = albedo.
-    vec3 wi = to_world(basis_from_normal(s.ns), sample_cosine_hemisphere(u_bounce.x, u_bounce.y));
+    // f cos / pdf = albedo x factor (1 where the bounce is cosine-weighted).
+    vec3 wi = vec3(0.0f);
+    float factor = 0.0f;
+    if (!light_path_bounce(s.p, s.ns, u_bounce, focus.center, focus.radius, focus_bounces, wi, factor)) break;
     if (!(dot3(wi, s.ng) > 0.0f)) break;  // would pass through the surface
-    SST_PRECISE vec3 reflected = beta * albedo;
+    SST_PRECISE vec3 reflected = beta * (albedo * factor);
     beta = reflected;
     origin = offset_ray_origin(s.offset, s.p, s.ng);
     dir = wi;

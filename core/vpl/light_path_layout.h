@@ -30,8 +30,8 @@ struct VplGenerationPush {
   uint min_bounces;   // VplParams::vpl_min_bounces
   uint diffuse_only;
   float ray_epsilon;  // scene_ray_epsilon(scene)
-  uint pad;
-  vec3 focus_center;  // the EmissionFocus of directional lights (core/lights/light_sample.h)
+  float focus_bounces;  // VplParams::focus_bounces
+  vec3 focus_center;    // the EmissionFocus of directional lights (core/lights/light_sample.h)
   float focus_radius;
 };
 

@@ -56,7 +56,7 @@ struct Tracer {
   // One light path (core/vpl/light_path.h); appends its VPLs to `out`.
   void trace(uint32_t path, Chunk& out) const {
     uvec2 r = trace_light_path(scene, lights.packed(), accel, out, seed, path, params.vpl_max_bounces,
-                               params.vpl_min_bounces, diffuse_only, focus);
+                               params.vpl_min_bounces, diffuse_only, focus, params.focus_bounces);
     out.rays += r.y;
   }
 
@@ -155,6 +155,8 @@ void validate(const VplParams& p) {
     throw Error("clamp_fraction must be a finite number >= 0 (got " + std::to_string(p.clamp_fraction) + ")");
   if (!(p.directional_focus >= 0.0f) || !std::isfinite(p.directional_focus))
     throw Error("directional_focus must be a finite number >= 0 (got " + std::to_string(p.directional_focus) + ")");
+  if (!(p.focus_bounces >= 0.0f && p.focus_bounces < 1.0f))
+    throw Error("focus_bounces must be in [0, 1) (got " + std::to_string(p.focus_bounces) + ")");
   if (p.vpl_source != "paths" && p.vpl_source != "brsm")
     throw Error("vpl_source must be paths or brsm (got '" + p.vpl_source + "')");
   if (p.brsm_resolution < 2 || p.brsm_resolution > 4096 || (p.brsm_resolution & (p.brsm_resolution - 1)) != 0)

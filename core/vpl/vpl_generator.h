@@ -46,7 +46,8 @@ struct VplParams {
   float clamp_fraction = 0.1f;
   std::string clamp_relative_to = "camera_distance";
   bool clamp_compensation = true;
-  float directional_focus = 4.0f;
+  float directional_focus = 2.0f;
+  float focus_bounces = 0.5f;
   int brsm_resolution = 256;
   int brsm_maps = 8;
   float brsm_gbuffer_scale = 0.25f;
@@ -82,6 +83,11 @@ struct VplParams {
       "directional lights start half of their light paths on a disc around the camera of this many times the median "
       "distance to what it sees, the rest on discs 4x, 16x, ... as wide and the whole scene's (unbiased either way; 0: "
       "the whole scene's only, as before), so a sunlit room inside a large landscape still gets VPLs");
+    v("focus_bounces", focus_bounces,
+      "a light path's bounce from a surface farther from the camera than directional_focus x the median view "
+      "distance aims this share of its directions at the sphere of that radius about the camera, the rest "
+      "cosine-weighted (unbiased; in [0, 1); 0: every bounce cosine-weighted, as before), so that the light of far "
+      "ground reaches the view by many paths rather than a few heavy ones; needs directional_focus > 0");
     v("brsm_resolution", brsm_resolution,
       "brsm: texels per side of each map (a power of two, 2..4096): one light ray and one potential VPL per texel");
     v("brsm_maps", brsm_maps,

@@ -56,5 +56,6 @@ void main() {
   focus.center = params.focus_center;
   focus.radius = params.focus_radius;
   paths[i] = trace_light_path(i * params.max_bounces, params.seed, params.first_path + i, int(params.max_bounces),
-                              int(params.min_bounces), params.diffuse_only != 0u, focus);
+                              int(params.min_bounces), params.diffuse_only != 0u, focus,
+                              params.focus_bounces);
 }

@@ -183,6 +183,22 @@ TEST(VulkanBackend, BrsmVplsGiveTheCpuImages) {
   if (!path.empty()) expect_backends_agree(load_gltf(path.string()), brsm("slc"), Agreement::exact);
 }
 
+// Light paths bounce toward the view from outside the focus sphere (core/vpl/light_path_bounce.h):
+// the window room's grey ground reaches beyond the sphere (2 x the view's median distance about
+// the camera), and the images are still the CPU's. The case does take that branch: without it
+// the CPU's image differs.
+TEST(VulkanBackend, FocusedBouncesGiveTheCpuImages) {
+  SKIP_WITHOUT_GPU("many_light");
+  Scene room = load_gltf(std::string(SST_SOURCE_DIR) + "/scenes/window-room-10km.gltf");
+  const Case focused{"slc", {{"vpls", 2048}}, Agreement::exact, Agreement::exact};
+  expect_backends_agree(room, focused, Agreement::exact);
+  Case cosine = focused;
+  cosine.params["focus_bounces"] = 0.0;
+  EXPECT_GT(relative_rmse(render(room, cosine, "cpu", "flat", 2).frame.indirect,
+                          render(room, focused, "cpu", "flat", 2).frame.indirect),
+            1e-3);
+}
+
 // Against the default CPU backend (Embree): different barycentrics and edge decisions move VPLs
 // and paths, so agreement is statistical there.
 TEST(VulkanBackend, SstAgreesStatisticallyWithTheEmbreeCpu) {

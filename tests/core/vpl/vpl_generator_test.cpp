@@ -292,6 +292,11 @@ TEST(VplParamsCheck, BadValuesNameTheParameter) {
   bad_clamp.clamp_relative_to = "camera_distance";
   bad_clamp.directional_focus = -1.0f;
   EXPECT_NE(message(bad_clamp).find("directional_focus"), std::string::npos);
+  bad_clamp.directional_focus = 2.0f;
+  for (float share : {-0.1f, 1.0f, float(NAN)}) {
+    bad_clamp.focus_bounces = share;  // 1 would leave the rest of the hemisphere undrawn: biased
+    EXPECT_NE(message(bad_clamp).find("focus_bounces"), std::string::npos) << share;
+  }
 }
 
 TEST(VplParamsCheck, JsonRoundTripListsEveryField) {

@@ -6,7 +6,7 @@
 #   scripts/large_extent_rooms.sh OUT_DIR [build]
 #
 # Writes the scenes and, where OUT_DIR lacks them, Cycles references (4096 spp, 8 bounces,
-# diffuse-only, 320x180: about 2 minutes each on 2 cores; needs `blender` and
+# diffuse-only, 320x180: 2-5 minutes each on 2 cores; needs `blender`, `python3-numpy` and
 # ../shared/tools/render_gltf.py) into OUT_DIR, then prints one line per render:
 #   half-size method seed mean reference-mean rmse
 set -euo pipefail

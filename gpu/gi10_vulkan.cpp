@@ -80,19 +80,16 @@ void VulkanGi10::restore_history(std::span<const uint8_t> bytes, bool) {
   parked_.assign(bytes.begin(), bytes.end());  // loaded with the next frame, on its device context
 }
 
-std::vector<std::span<uint8_t>> VulkanGi10::buffers() {
-  std::vector<std::span<uint8_t>> out;
+template <class Byte, class Self>
+std::vector<std::span<Byte>> VulkanGi10::byte_views(Self& self) {
+  std::vector<std::span<Byte>> out;
   for (size_t b = kFrame + 1; b < kBufferCount; ++b)
-    out.emplace_back(static_cast<uint8_t*>(buffers_[b]->data()), buffers_[b]->size());
+    out.emplace_back(static_cast<Byte*>(self.buffers_[b]->data()), self.buffers_[b]->size());
   return out;
 }
 
-std::vector<std::span<const uint8_t>> VulkanGi10::buffers() const {
-  std::vector<std::span<const uint8_t>> out;
-  for (size_t b = kFrame + 1; b < kBufferCount; ++b)
-    out.emplace_back(static_cast<const uint8_t*>(buffers_[b]->data()), buffers_[b]->size());
-  return out;
-}
+std::vector<std::span<uint8_t>> VulkanGi10::buffers() { return byte_views<uint8_t>(*this); }
+std::vector<std::span<const uint8_t>> VulkanGi10::buffers() const { return byte_views<const uint8_t>(*this); }
 
 void VulkanGi10::begin_frame(const RenderContext&, const glsl::Gi10Frame& frame) {
   parity_ = frame.frame & 1u;

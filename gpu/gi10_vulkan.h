@@ -34,6 +34,9 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
   FrameOutput direct(const RenderContext& context, StageTimer& timer) override;
   std::vector<std::span<const uint8_t>> buffers() const override;
   std::vector<std::span<uint8_t>> buffers() override;
+  // The buffers after the frame constants, as bytes in place, for `self` const or not.
+  template <class Byte, class Self>
+  static std::vector<std::span<Byte>> byte_views(Self& self);
 
   Gi10Method& method_;
   const GpuRenderContext* gpu_ = nullptr;

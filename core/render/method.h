@@ -67,7 +67,7 @@ struct MethodInfo {
   std::function<std::unique_ptr<Method>(const nlohmann::json& params)> create;
   // Whether an interrupted sequence can continue from its checkpoint (the pipeline's SequenceState
   // with the method's save_history); false for a method that carries state of its own from frame
-  // to frame that save_history does not hold (every method's does now).
+  // to frame that save_history does not hold, whose resumed run would start that state over.
   bool resumable = true;
 };
 

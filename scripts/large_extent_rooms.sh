@@ -3,7 +3,7 @@
 # (scenes/tools/make_window_room.py), against Blender Cycles: image means and RMSE, three seeds
 # each (results/README.md, "Large extents"; docs/design/lengths.md).
 #
-#   scripts/large_extent_rooms.sh OUT_DIR [build]
+#   [SEEDS="4 5 6 7 8"] scripts/large_extent_rooms.sh OUT_DIR [build]
 #
 # Writes the scenes and, where OUT_DIR lacks them, Cycles references (4096 spp, 8 bounces,
 # diffuse-only, 320x180: 2-5 minutes each on 2 cores; needs `blender`, `python3-numpy` and
@@ -31,7 +31,7 @@ for h in 5 50 500 5000; do
       gi10) args=(--spp 1) ;;
       *) args=(--spp 8 --vpls 100000) ;;
     esac
-    for seed in 1 2 3; do
+    for seed in ${SEEDS:-1 2 3}; do
       f="$m-$h-$seed.exr"
       "$build/sst-render" "window-room-$h.gltf" --method "$m" "${args[@]}" --width 320 --height 180 --diffuse-only \
         --seed "$seed" -o "$f" --json "${f%.exr}.json" > /dev/null

@@ -125,7 +125,7 @@ SST_FUNC vec2 emitter_child_weights(LIGHT_CTX_PARAM uint first, vec3 p, vec3 n) 
   vec2 w;
   if (LIGHT_SAMPLER_KIND == LIGHT_SAMPLER_SLC) {
     w = slc_pair_weights(a.lo, a.hi, a.intensity, !(a.intensity > 0.0f), b.lo, b.hi, b.intensity,
-                         !(b.intensity > 0.0f), p, basis_from_normal(n));
+                         !(b.intensity > 0.0f), p, basis_from_normal(n), 0.0f);
   } else {
     uint distance = LIGHT_HEADER.tree_distance;
     w = vec2(emitter_importance(a, p, n, distance), emitter_importance(b, p, n, distance));

@@ -51,6 +51,11 @@ float tree_length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds
   return lengths->scene_bounds.diagonal();
 }
 
+float node_distance_floor_for(const LightTreeParams& params, const Bounds3& vpl_bounds, float view) {
+  if (vpl_bounds.empty()) return 0.0f;
+  return vpl_bounds.diagonal() > params.node_distance_floor_above * view ? params.node_distance_floor : 0.0f;
+}
+
 void validate(const LightTreeParams& params) {
   if (!contains(kTreeKinds, params.tree))
     throw Error("light tree: unknown tree '" + params.tree + "' (did you mean '" + nearest_name(params.tree, kTreeKinds) +
@@ -63,6 +68,12 @@ void validate(const LightTreeParams& params) {
     throw Error("light tree: sigma_max_relative_to '" + params.sigma_max_relative_to + "' is not view, vpl_bounds or scene_bounds");
   if (!(params.substitute_max_extent >= 0.0f) || !std::isfinite(params.substitute_max_extent))
     throw Error("light tree: substitute_max_extent " + std::to_string(params.substitute_max_extent) +
+                " is not a finite number >= 0");
+  if (!(params.node_distance_floor >= 0.0f) || !std::isfinite(params.node_distance_floor))
+    throw Error("light tree: node_distance_floor " + std::to_string(params.node_distance_floor) +
+                " is not a finite number >= 0");
+  if (!(params.node_distance_floor_above >= 0.0f) || !std::isfinite(params.node_distance_floor_above))
+    throw Error("light tree: node_distance_floor_above " + std::to_string(params.node_distance_floor_above) +
                 " is not a finite number >= 0");
   if (!contains(kLeaves, params.leaves))
     throw Error("light tree: leaves '" + params.leaves + "' is not stored or made");

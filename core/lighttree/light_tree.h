@@ -106,6 +106,8 @@ struct LightTreeParams {
   std::string sigma_max_relative_to = "vpl_bounds";  // the methods' default is view (TreeMethodParams)
   std::string leaves = "made";
   float substitute_max_extent = 1.0f;
+  float node_distance_floor = 0.1f;
+  float node_distance_floor_above = 50.0f;
 
   template <class V>
   void visit(V&& v) {
@@ -126,6 +128,17 @@ struct LightTreeParams {
       "substitutes (sst, hybrid): a suitable node stands in for its VPLs only where its box's diagonal is at most "
       "this times its distance from the shading point (0: wherever it is suitable, the papers' rule; they bound no "
       "node's width, and a wide coplanar ground biased sst by -14% at 10 km)");
+    v("node_distance_floor", node_distance_floor,
+      "where the VPLs span more than node_distance_floor_above view lengths: the walks' distance to a node's box "
+      "is at least this times the box's diagonal (slc, sst, rtslc, hybrid; box_distance2_floored), since under "
+      "the papers' rules a box kilometres wide that holds the shading point outweighs a bright room beside it by "
+      "its power alone; 0 keeps the papers' rules everywhere (slc ignores distance within one diagonal of a box, "
+      "sst floors it at distance_floor x D, the hybrid at the VPL clamp, rtslc not at all)");
+    v("node_distance_floor_above", node_distance_floor_above,
+      "the floor acts only when the diagonal of the VPLs' bounding box exceeds this many view lengths (twice the "
+      "median distance from the camera to what it sees); 0: always. In rooms the papers' rules measured better "
+      "(the floor raised rtslc's and the hybrid's error with VPLs 14.5 view lengths wide, and slc's in the "
+      "breakfast room); at 145 and 1445 it lowered every method's (results/README.md, 'Large extents')");
     v("leaves", leaves,
       "made (only the internal nodes stored; a walk makes a leaf from its VPL when it reaches it: 96 bytes a VPL "
       "less and a single frame's build 2-7x faster, at the same sampling time) or stored (every node in the tree's "
@@ -139,6 +152,11 @@ void validate(const LightTreeParams& params);
 // D for `params` over VPLs bounded by `vpl_bounds`. Throws sst::Error when `lengths` lacks what
 // sigma_max_relative_to asks for.
 float tree_length_scale(const LightTreeParams& params, const Bounds3& vpl_bounds, const TreeLengths* lengths);
+
+// The node-distance floor the walks use (SamplerParams::node_distance_floor): params'
+// node_distance_floor where the VPLs' bounding box is wider than node_distance_floor_above view
+// lengths `view` (an empty set: never), else 0.
+float node_distance_floor_for(const LightTreeParams& params, const Bounds3& vpl_bounds, float view);
 
 // Wall time of each build stage, in milliseconds.
 struct LightTreeBuildStats {

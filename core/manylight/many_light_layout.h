@@ -90,6 +90,7 @@ struct SamplerParams {
   uint rtslc_direct_sizes_first;
   float clamp_per_depth;  // VplLighting::clamp_per_depth
   float substitute_max_extent;  // sst, hybrid: LightTreeParams::substitute_max_extent
+  float node_distance_floor;    // slc, sst, rtslc, hybrid walks: LightTreeParams::node_distance_floor
 };
 
 SST_END
@@ -102,7 +103,7 @@ static_assert(offsetof(GpuVpl, position) == 0 && offsetof(GpuVpl, normal) == 16 
               offsetof(GpuVpl, intensity) == 32);
 static_assert(sizeof(CutGuide) == 32);
 static_assert(offsetof(CutGuide, valid) == 12 && offsetof(CutGuide, n) == 16);
-static_assert(sizeof(SamplerParams) == 96);
+static_assert(sizeof(SamplerParams) == 100);
 static_assert(offsetof(SamplerParams, sst_eps) == 24 && offsetof(SamplerParams, cut_block_size) == 32 &&
               offsetof(SamplerParams, rtslc_interleave) == 48 && offsetof(SamplerParams, hybrid_cut_size) == 60 &&
               offsetof(SamplerParams, hybrid_mock_cut_size) == 72 &&

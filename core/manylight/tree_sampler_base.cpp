@@ -17,12 +17,14 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
     else
       cpu_builder_.build(lighting.vpls, tree_params_, &lengths, tree_, &stats);
   });
+  const float node_floor = node_distance_floor_for(tree_params_, tree_.vpl_bounds, lengths.view);
   counters["tree"] = {{"kind", tree_.kind},
                       {"built_on", built_on},
                       {"nodes", tree_.node_count()},
                       {"height", tree_height(tree_)},
                       {"suitable_internal", count_suitable_internal(tree_)},
                       {"length_scale", tree_.length_scale},
+                      {"node_distance_floor", node_floor},
                       {"bounds_ms", stats.bounds_ms},
                       {"keys_ms", stats.keys_ms},
                       {"sort_ms", stats.sort_ms},
@@ -31,6 +33,7 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
                       {"total_ms", stats.total_ms}};
   set_tree_inputs(tree_, inputs);
   inputs.params.substitute_max_extent = tree_params_.substitute_max_extent;
+  inputs.params.node_distance_floor = node_floor;
 }
 
 }  // namespace sst

@@ -18,6 +18,17 @@ SST_FUNC float box_distance2_min(vec3 lo, vec3 hi, vec3 x) {
   return dot3(d, d);
 }
 
+// box_distance2_min floored at (floor_fraction x the box's diagonal)^2: the node-distance floor
+// of the tree methods (LightTreeParams::node_distance_floor). A bound of 1/d^2 over a box is
+// meaningless where x is within the box's own size; the floor keeps a near box's weight to what
+// its light could give from a fraction of its size away, so a box kilometres wide that holds x
+// does not outweigh a small bright one beside it by its power alone. 0: the plain distance.
+SST_FUNC float box_distance2_floored(vec3 lo, vec3 hi, vec3 x, float floor_fraction) {
+  SST_PRECISE float f2 = floor_fraction * floor_fraction;
+  SST_PRECISE float floor2 = f2 * box_diagonal2(lo, hi);
+  return max(box_distance2_min(lo, hi, x), floor2);
+}
+
 // Squared distance from x to the farthest point of the box: sum over axes of
 // max(|lo - x|, |hi - x|)^2 (RTSLC's dmax^2).
 SST_FUNC float box_distance2_max(vec3 lo, vec3 hi, vec3 x) {

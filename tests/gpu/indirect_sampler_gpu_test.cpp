@@ -236,6 +236,11 @@ std::vector<Case> cases() {
       {"hybrid_diffuse_only", true, kVpls, "hybrid", defaults},
       {"hybrid_mock_cut", false, kVpls, "hybrid", {{"n_min", 1.0}}},
       {"hybrid_one_block", false, kVpls, "hybrid", {{"block_size", 1000}}},
+      {"slc_node_floor", false, kVpls, "slc", {{"node_distance_floor", 0.5}, {"node_distance_floor_above", 0.0}}},
+      {"sst_node_floor", false, kVpls, "sst", {{"node_distance_floor", 0.5}, {"node_distance_floor_above", 0.0}}},
+      {"rtslc_node_floor", false, kVpls, "rtslc", {{"node_distance_floor", 0.5}, {"node_distance_floor_above", 0.0}}},
+      {"rtslc_slc_weights_node_floor", false, kVpls, "rtslc", {{"weights", "slc"}, {"node_distance_floor", 0.5}, {"node_distance_floor_above", 0.0}}},
+      {"hybrid_node_floor", false, kVpls, "hybrid", {{"node_distance_floor", 0.5}, {"node_distance_floor_above", 0.0}}},
   };
   cases.insert(cases.end(), variants.begin(), variants.end());
   return cases;

@@ -199,6 +199,18 @@ TEST(VulkanBackend, FocusedBouncesGiveTheCpuImages) {
             1e-3);
 }
 
+// The node-distance floor made to act on the 10 km room (whose VPLs span a few view lengths):
+// the whole frame, host side included, gives the CPU's images with every tree method.
+TEST(VulkanBackend, NodeDistanceFloorGivesTheCpuImages) {
+  SKIP_WITHOUT_GPU("many_light");
+  Scene room = load_gltf(std::string(SST_SOURCE_DIR) + "/scenes/window-room-10km.gltf");
+  for (const char* method : {"slc", "sst", "rtslc", "hybrid"}) {
+    SCOPED_TRACE(method);
+    const Case floored{method, {{"vpls", 2048}, {"node_distance_floor_above", 0.0}}, Agreement::exact, Agreement::exact};
+    expect_backends_agree(room, floored, Agreement::exact);
+  }
+}
+
 // Against the default CPU backend (Embree): different barycentrics and edge decisions move VPLs
 // and paths, so agreement is statistical there.
 TEST(VulkanBackend, SstAgreesStatisticallyWithTheEmbreeCpu) {

@@ -15,8 +15,10 @@
 SST_BEGIN
 
 // lum(I) G_avg / max(d^2, c^2), G_avg the mean over the box corners of max(n . normalize(corner -
-// x), 0): a node's expected contribution, the walk's weight and the cuts' error.
-SST_FUNC float hybrid_weight(SST_IN(LightNode) node, vec3 x, vec3 n, float clamp_distance) {
+// x), 0): a node's expected contribution, the walk's weight and the cuts' error. d is floored at
+// floor_fraction times the box's diagonal (LightTreeParams::node_distance_floor; the walks only:
+// a cut should split the wide node that holds its pivot first).
+SST_FUNC float hybrid_weight(SST_IN(LightNode) node, vec3 x, vec3 n, float clamp_distance, float floor_fraction) {
   if (light_node_empty(node)) return 0.0f;
   float g = 0.0f;
   for (int c = 0; c < 8; ++c) {
@@ -29,7 +31,7 @@ SST_FUNC float hybrid_weight(SST_IN(LightNode) node, vec3 x, vec3 n, float clamp
     if (len > 0.0f) g += max(cosine, 0.0f);
   }
   SST_PRECISE float c2 = clamp_distance * clamp_distance;
-  float d2 = max(box_distance2_min(node.bounds_lo, node.bounds_hi, x), c2);
+  float d2 = max(box_distance2_floored(node.bounds_lo, node.bounds_hi, x, floor_fraction), c2);
   SST_PRECISE float w = luminance(node.intensity) * (g * 0.125f) / d2;
   return is_finite(w) ? w : 0.0f;
 }
@@ -77,8 +79,8 @@ SST_FUNC void hybrid_traverse(ML_CTX_PARAM SST_IN(ShadingPoint) sp, uint from, S
       e.value += c / prob;
       return;
     }
-    float w0 = hybrid_weight(ML_NODE(node.left), sp.p, sp.basis.n, clamp_distance);
-    float w1 = hybrid_weight(ML_NODE(node.right), sp.p, sp.basis.n, clamp_distance);
+    float w0 = hybrid_weight(ML_NODE(node.left), sp.p, sp.basis.n, clamp_distance, ML_PARAMS.node_distance_floor);
+    float w1 = hybrid_weight(ML_NODE(node.right), sp.p, sp.basis.n, clamp_distance, ML_PARAMS.node_distance_floor);
     SST_PRECISE float w = w0 + w1;
     if (!(w > 0.0f)) return;  // neither child is expected to contribute: no backtracking
     float p0 = w0 / w;

@@ -42,7 +42,8 @@ void HybridSampler::build(const VplLighting& lighting, StageTimer& timer, nlohma
   const uint32_t n = uint32_t(params_.cut_size);
   auto centre = [](const BlockRect& r) { return glm::ivec2(r.x0 + r.w / 2, r.y0 + r.h / 2); };
   auto error = [&](const LightNode& node, const GBufferSample& g) {
-    return g.valid ? hybrid_weight(node, g.p, g.n, vpl_clamp_at(lighting.clamp_distance, lighting.clamp_per_depth, g.depth))
+    return g.valid ? hybrid_weight(node, g.p, g.n, vpl_clamp_at(lighting.clamp_distance, lighting.clamp_per_depth, g.depth),
+                                   0.0f)
                    : luminance(node.intensity);
   };
   // Cut i of neighbouring blocks must cover nearby parts of the tree for blending by index.

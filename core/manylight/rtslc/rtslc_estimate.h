@@ -28,8 +28,10 @@ SST_FUNC float rtslc_distance_weight(float ig0, float ig1, float d0, float d1, f
 }
 
 // P_0, the probability of descending into c0 rather than c1: the mean of the weights with the
-// minimum and with the maximum distances to the boxes (Lin & Yuksel 2020, eq. 5).
-SST_FUNC float rtslc_child_probability(SST_IN(LightNode) c0, SST_IN(LightNode) c1, vec3 x, vec3 n) {
+// minimum and with the maximum distances to the boxes (Lin & Yuksel 2020, eq. 5), the minimum
+// floored at floor_fraction times the box's diagonal (LightTreeParams::node_distance_floor).
+SST_FUNC float rtslc_child_probability(SST_IN(LightNode) c0, SST_IN(LightNode) c1, vec3 x, vec3 n,
+                                       float floor_fraction) {
   if (light_node_empty(c0)) return 0.0f;
   if (light_node_empty(c1)) return 1.0f;
   float ig0 = rtslc_importance(c0, x, n);
@@ -37,8 +39,8 @@ SST_FUNC float rtslc_child_probability(SST_IN(LightNode) c0, SST_IN(LightNode) c
   SST_PRECISE float ig = ig0 + ig1;
   if (!(ig > 0.0f)) return 0.0f;  // dead branch: neither child can light x
   float ratio = ig0 / ig;
-  float dmin0 = box_distance2_min(c0.bounds_lo, c0.bounds_hi, x);
-  float dmin1 = box_distance2_min(c1.bounds_lo, c1.bounds_hi, x);
+  float dmin0 = box_distance2_floored(c0.bounds_lo, c0.bounds_hi, x, floor_fraction);
+  float dmin1 = box_distance2_floored(c1.bounds_lo, c1.bounds_hi, x, floor_fraction);
   if (dmin0 == 0.0f && dmin1 == 0.0f) return ratio;  // x in both boxes: distance says nothing
   float wmax = rtslc_distance_weight(ig0, ig1, dmin0, dmin1, ratio);
   float wmin = rtslc_distance_weight(ig0, ig1, box_distance2_max(c0.bounds_lo, c0.bounds_hi, x),
@@ -48,11 +50,12 @@ SST_FUNC float rtslc_child_probability(SST_IN(LightNode) c0, SST_IN(LightNode) c
 }
 
 // (P_0, P_1) at an internal node with children c0, c1 (ML_PARAMS.rtslc_weights says whose
-// weights); both 0 for a dead branch, where no VPL below can light x. P_1 = 1 - P_0 exactly: the
-// walk takes c0 iff u < P_0.
-SST_FUNC vec2 rtslc_child_probabilities(SST_IN(LightNode) c0, SST_IN(LightNode) c1, vec3 x, vec3 n, uint weights) {
+// weights; floor_fraction: LightTreeParams::node_distance_floor); both 0 for a dead branch, where
+// no VPL below can light x. P_1 = 1 - P_0 exactly: the walk takes c0 iff u < P_0.
+SST_FUNC vec2 rtslc_child_probabilities(SST_IN(LightNode) c0, SST_IN(LightNode) c1, vec3 x, vec3 n, uint weights,
+                                        float floor_fraction) {
   if (weights == ML_RTSLC_WEIGHTS_SLC) {
-    vec2 w = slc_child_weights(c0, c1, x, basis_from_normal(n));
+    vec2 w = slc_child_weights(c0, c1, x, basis_from_normal(n), floor_fraction);
     float sum = w.x + w.y;
     if (!(sum > 0.0f) || !is_finite(sum)) return vec2(0.0f);
     float p0 = w.x / sum;
@@ -60,7 +63,7 @@ SST_FUNC vec2 rtslc_child_probabilities(SST_IN(LightNode) c0, SST_IN(LightNode) 
   }
   SST_PRECISE float ig = rtslc_importance(c0, x, n) + rtslc_importance(c1, x, n);
   if (!(ig > 0.0f)) return vec2(0.0f);
-  float p0 = rtslc_child_probability(c0, c1, x, n);
+  float p0 = rtslc_child_probability(c0, c1, x, n, floor_fraction);
   return vec2(p0, 1.0f - p0);
 }
 
@@ -97,7 +100,8 @@ SST_FUNC RtslcSample rtslc_traverse(ML_CTX_PARAM uint from, vec3 x, vec3 n, SST_
       s.probability = prob;
       return s;
     }
-    vec2 p = rtslc_child_probabilities(ML_NODE(node.left), ML_NODE(node.right), x, n, ML_PARAMS.rtslc_weights);
+    vec2 p = rtslc_child_probabilities(ML_NODE(node.left), ML_NODE(node.right), x, n, ML_PARAMS.rtslc_weights,
+                                       ML_PARAMS.node_distance_floor);
     if (!(p.x + p.y > 0.0f)) return s;  // dead branch: no estimate, no shadow ray
     bool left = pixel_sampler_get1d(ps) < p.x;
     prob *= left ? p.x : p.y;

@@ -44,21 +44,22 @@ uint32_t weights_id(RtslcWeights weights) {
 }  // namespace
 
 RtslcSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler,
-                           RtslcWeights weights) {
+                           RtslcWeights weights, float floor_fraction) {
   SamplerInputs inputs;
   set_tree_inputs(tree, inputs);
   inputs.params.rtslc_weights = weights_id(weights);
+  inputs.params.node_distance_floor = floor_fraction;
   return rtslc_traverse(inputs, from, x, n, sampler);
 }
 
 double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n,
-                              RtslcWeights weights) {
+                              RtslcWeights weights, float floor_fraction) {
   double prob = 1.0;
   uint32_t i = leaf;
   while (i > from) {
     uint32_t parent = i / 2;
     const LightNode& p = tree[parent];
-    vec2 pc = rtslc_child_probabilities(tree[p.left], tree[p.right], x, n, weights_id(weights));
+    vec2 pc = rtslc_child_probabilities(tree[p.left], tree[p.right], x, n, weights_id(weights), floor_fraction);
     prob *= (i == p.left) ? double(pc.x) : double(pc.y);
     i = parent;
   }

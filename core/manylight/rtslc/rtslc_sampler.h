@@ -69,13 +69,13 @@ enum class RtslcWeights {
 RtslcWeights parse_rtslc_weights(const std::string& name);
 
 // rtslc_traverse (rtslc_estimate.h) on `tree` alone, outside a frame: one stochastic descent
-// from `from` to a leaf with `weights`. For tests.
+// from `from` to a leaf with `weights` and node-distance floor `floor_fraction`. For tests.
 RtslcSample rtslc_traverse(const LightTree& tree, uint32_t from, vec3 x, vec3 n, PixelSampler& sampler,
-                           RtslcWeights weights = RtslcWeights::rtslc);
+                           RtslcWeights weights = RtslcWeights::rtslc, float floor_fraction = 0.0f);
 // The exact probability that rtslc_traverse from `from` (with the same `weights`) ends at `leaf`
 // (0 if not below it). Heap layout only (perfect tree).
 double rtslc_leaf_probability(const LightTree& tree, uint32_t from, uint32_t leaf, vec3 x, vec3 n,
-                              RtslcWeights weights = RtslcWeights::rtslc);
+                              RtslcWeights weights = RtslcWeights::rtslc, float floor_fraction = 0.0f);
 
 class RtslcSampler final : public TreeSamplerBase {
  public:

@@ -11,12 +11,13 @@
 SST_BEGIN
 
 // (w_left, w_right) at shading position x with shading frame `frame` (basis_from_normal of the
-// shading normal; rtslc's `weights slc` too).
-SST_FUNC vec2 slc_child_weights(SST_IN(LightNode) left, SST_IN(LightNode) right, vec3 x, SST_IN(Basis) frame) {
+// shading normal; rtslc's `weights slc` too); floor_fraction: LightTreeParams::node_distance_floor.
+SST_FUNC vec2 slc_child_weights(SST_IN(LightNode) left, SST_IN(LightNode) right, vec3 x, SST_IN(Basis) frame,
+                                float floor_fraction) {
   SST_PRECISE float lum_left = luminance(left.intensity);
   SST_PRECISE float lum_right = luminance(right.intensity);
   return slc_pair_weights(left.bounds_lo, left.bounds_hi, lum_left, light_node_empty(left), right.bounds_lo,
-                          right.bounds_hi, lum_right, light_node_empty(right), x, frame);
+                          right.bounds_hi, lum_right, light_node_empty(right), x, frame, floor_fraction);
 }
 
 SST_FUNC IndirectEstimate estimate_slc(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST_INOUT(PixelSampler) ps) {
@@ -34,7 +35,7 @@ SST_FUNC IndirectEstimate estimate_slc(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
       e.value = divide_by_probability(c, walk.probability);
       break;
     }
-    vec2 w = slc_child_weights(ML_NODE(node.left), ML_NODE(node.right), sp.p, sp.basis);
+    vec2 w = slc_child_weights(ML_NODE(node.left), ML_NODE(node.right), sp.p, sp.basis, ML_PARAMS.node_distance_floor);
     tree_walk_step(walk, node, w, ps);
   }
   e.nodes_visited = walk.nodes_visited;

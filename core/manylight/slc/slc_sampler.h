@@ -38,10 +38,10 @@ TreeWalk walk_tree(const LightTree& tree, const ChildWeights& weights, const Sto
 // A walk probability as a double.
 inline double probability_value(TreeProbability p) { return std::ldexp(double(p.m), p.e); }
 
-// slc_child_weights (slc_estimate.h) at `point`.
-inline ChildWeights slc_weights(const ShadingPoint& point) {
-  return [&point](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
-    vec2 w = slc_child_weights(l, r, point.p, point.basis);
+// slc_child_weights (slc_estimate.h) at `point` with node-distance floor `floor_fraction`.
+inline ChildWeights slc_weights(const ShadingPoint& point, float floor_fraction = 0.0f) {
+  return [&point, floor_fraction](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
+    vec2 w = slc_child_weights(l, r, point.p, point.basis, floor_fraction);
     return {w.x, w.y};
   };
 }

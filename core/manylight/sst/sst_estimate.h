@@ -22,11 +22,13 @@ struct SstWalkBound {
   vec3 inv_mirror;      // 1 / mirror per axis, where mirror's component is not 0
   float floor_value;    // glossy lobe: keeps every box above the surface reachable
   float eps2;           // G's floor on the squared distance
+  float floor_fraction;  // and on d over the box's diagonal (LightTreeParams::node_distance_floor)
 };
 
 // sp.brdf: the lobe's part (sst_lobe_brdf).
-SST_FUNC SstWalkBound sst_walk_bound(SST_IN(ShadingPoint) sp, bool glossy, float eps) {
+SST_FUNC SstWalkBound sst_walk_bound(SST_IN(ShadingPoint) sp, bool glossy, float eps, float floor_fraction) {
   SstWalkBound b;
+  b.floor_fraction = floor_fraction;
   b.glossy = glossy;
   SST_PRECISE float diffuse_scale = luminance(sp.brdf.diffuse) * kInvPi;
   b.diffuse_scale = diffuse_scale;
@@ -89,7 +91,8 @@ SST_FUNC float sst_material_bound(SST_IN(LightNode) node, SST_IN(ShadingPoint) s
   return m;
 }
 
-// w = M * G * I, G = 1 / max(d^2, eps^2); cos_bound: box_cos_bound_in_frame of the node's box.
+// w = M * G * I, G = 1 / max(d^2, eps^2), d floored at b.floor_fraction times the box's diagonal;
+// cos_bound: box_cos_bound_in_frame of the node's box.
 SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, SST_IN(SstWalkBound) b,
                                float cos_bound) {
   if (light_node_empty(node)) return 0.0f;
@@ -97,7 +100,7 @@ SST_FUNC float sst_node_weight(SST_IN(LightNode) node, SST_IN(ShadingPoint) sp, 
   if (!(intensity > 0.0f)) return 0.0f;
   float m = sst_material_bound(node, sp, b, cos_bound);
   if (!(m > 0.0f)) return 0.0f;
-  float g = 1.0f / max(box_distance2_min(node.bounds_lo, node.bounds_hi, sp.p), b.eps2);
+  float g = 1.0f / max(box_distance2_floored(node.bounds_lo, node.bounds_hi, sp.p, b.floor_fraction), b.eps2);
   SST_PRECISE float w = m * g * intensity;
   return w;
 }
@@ -157,7 +160,7 @@ SST_FUNC IndirectEstimate estimate_sst(ML_CTX_PARAM SST_IN(ShadingPoint) sp, SST
   ShadingPoint lp = sp;
   if (sp.brdf.specular) lp.brdf = sst_lobe_brdf(sp.brdf, glossy);
   bool stop_at_suitable = !glossy && ML_PARAMS.sst_substitutes != 0u;
-  SstWalkBound bound = sst_walk_bound(lp, glossy, ML_PARAMS.sst_eps);
+  SstWalkBound bound = sst_walk_bound(lp, glossy, ML_PARAMS.sst_eps, ML_PARAMS.node_distance_floor);
 
   TreeWalk walk = tree_walk_begin(ML_PARAMS.tree_root);
   for (uint step = 0u; step < ML_PARAMS.tree_node_count && walk.node != kNoNode; ++step) {

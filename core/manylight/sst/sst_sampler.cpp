@@ -15,8 +15,8 @@ void validate(const SstParams& p) {
     throw Error("sst: parameter 'distance_floor' must be finite and >= 0 (got " + nlohmann::json(shortest_decimal(p.distance_floor)).dump() + ")");
 }
 
-ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe) {
-  SstWalkBound bound = sst_walk_bound(point, lobe == SstLobe::glossy, eps);
+ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe, float floor_fraction) {
+  SstWalkBound bound = sst_walk_bound(point, lobe == SstLobe::glossy, eps, floor_fraction);
   return [&point, bound](const LightNode& l, const LightNode& r) -> std::array<double, 2> {
     vec2 w = sst_child_weights(l, r, point, bound);
     return {w.x, w.y};

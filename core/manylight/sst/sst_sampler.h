@@ -72,8 +72,9 @@ void validate(const SstParams& p);
 enum class SstLobe { diffuse, glossy };
 
 // The weights of step 2 (sst_child_weights, sst_estimate.h) at `point`, whose brdf is the lobe's
-// part of the BRDF (sst_lobe_brdf); eps as above. For exact stop probabilities in tests.
-ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe);
+// part of the BRDF (sst_lobe_brdf); eps as above; floor_fraction: LightTreeParams::
+// node_distance_floor. For exact stop probabilities in tests.
+ChildWeights sst_weights(const ShadingPoint& point, float eps, SstLobe lobe, float floor_fraction = 0.0f);
 // The stop rule of step 3 (leaves only for the glossy lobe or without substitutes).
 StopRule sst_stop_rule(SstLobe lobe, bool substitutes = true);
 

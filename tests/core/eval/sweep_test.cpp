@@ -205,7 +205,7 @@ class SwappedWeightsSlc final : public TreeSamplerBase {
     uint32_t i = tree_.root;
     double p = 1.0;
     while (!tree_[i].is_leaf()) {
-      vec2 w = slc_child_weights(tree_[tree_[i].left], tree_[tree_[i].right], point.p, point.basis);
+      vec2 w = slc_child_weights(tree_[tree_[i].left], tree_[tree_[i].right], point.p, point.basis, 0.0f);
       double sum = double(w.x) + double(w.y);
       if (!(sum > 0.0)) return e;
       bool left = pixel_sampler_get1d(sampler) < w.y / sum;  // the bug: the sibling's probability

@@ -58,7 +58,7 @@ TEST(SlcWeights, PairWeightsEqualTheirScalarFormToTheBit) {
     if (!std::isfinite(n.x)) continue;
     Basis frame = basis_from_normal(n);
     vec2 expected = weights_one_box_at_a_time(lo0, hi0, lum0, empty0, lo1, hi1, lum1, empty1, x, frame);
-    vec2 w = slc_pair_weights(lo0, hi0, lum0, empty0, lo1, hi1, lum1, empty1, x, frame);
+    vec2 w = slc_pair_weights(lo0, hi0, lum0, empty0, lo1, hi1, lum1, empty1, x, frame, 0.0f);
     ASSERT_EQ(bits(w.x), bits(expected.x)) << i;
     ASSERT_EQ(bits(w.y), bits(expected.y)) << i;
     bool is_near = (!empty0 && box_distance2_min(lo0, hi0, x) <= box_diagonal2(lo0, hi0)) ||

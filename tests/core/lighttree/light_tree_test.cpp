@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "core/lighttree/sort_key.h"
 #include "core/lighttree/tree_builders.h"
@@ -363,6 +364,12 @@ TEST(LightTreeParamsTest, BadValuesNameTheParameter) {
   p = {};
   p.sigma_max_relative_to = "scene";
   EXPECT_NE(message(p).find("sigma_max_relative_to"), std::string::npos);
+  p = {};
+  p.node_distance_floor = -0.1f;
+  EXPECT_NE(message(p).find("node_distance_floor"), std::string::npos);
+  p = {};
+  p.node_distance_floor_above = std::numeric_limits<float>::infinity();
+  EXPECT_NE(message(p).find("node_distance_floor_above"), std::string::npos);
   // The parameter table round-trips through JSON with the shared helpers.
   LightTreeParams q;
   params_from_json(q, nlohmann::json{{"tree", "perfect"}, {"v_min", 0.7}, {"sigma_max", 0.015}}, "test");

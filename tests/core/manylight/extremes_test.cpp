@@ -402,10 +402,10 @@ TEST_P(ExtremesVplSet, HybridWeightsAndCutsFinite) {
       for (const ShadingPoint& sp : shading_points(vpls)) {
         vec3 x = sp.p, n = sp.ng;
         cut.clear();  // build_cut appends
-        build_cut(tree, m, [&](const LightNode& node) { return hybrid_weight(node, x, n, kClamp); }, cut);
+        build_cut(tree, m, [&](const LightNode& node) { return hybrid_weight(node, x, n, kClamp, 0.0f); }, cut);
         ASSERT_FALSE(cut.empty());
         for (uint32_t node : cut) {
-          float w = hybrid_weight(tree[node], x, n, kClamp);
+          float w = hybrid_weight(tree[node], x, n, kClamp, 0.0f);
           ASSERT_TRUE(std::isfinite(w));
           ASSERT_GE(w, 0.0f);
         }

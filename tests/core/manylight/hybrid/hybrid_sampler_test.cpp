@@ -23,14 +23,14 @@ TEST(HybridSampler, WeightIsZeroBehindAndFallsOffWithDistance) {
   LightNode a{};
   a.bounds_lo = vec3(1, 0, 0), a.bounds_hi = vec3(2, 1, 1), a.intensity = vec3(1), a.vpl_count = 1;
   vec3 x(0, 0.5f, 0.5f);
-  EXPECT_EQ(hybrid_weight(a, x, vec3(-1, 0, 0), 0.01f), 0.0f);
-  float near = hybrid_weight(a, x, vec3(1, 0, 0), 0.01f);
-  float far = hybrid_weight(a, x - vec3(3, 0, 0), vec3(1, 0, 0), 0.01f);
+  EXPECT_EQ(hybrid_weight(a, x, vec3(-1, 0, 0), 0.01f, 0.0f), 0.0f);
+  float near = hybrid_weight(a, x, vec3(1, 0, 0), 0.01f, 0.0f);
+  float far = hybrid_weight(a, x - vec3(3, 0, 0), vec3(1, 0, 0), 0.01f, 0.0f);
   EXPECT_GT(near, far);
   EXPECT_GT(far, 0.0f);
   LightNode empty{};
   empty.bounds_lo = vec3(kInf), empty.bounds_hi = vec3(-kInf);
-  EXPECT_EQ(hybrid_weight(empty, x, vec3(1, 0, 0), 0.01f), 0.0f);
+  EXPECT_EQ(hybrid_weight(empty, x, vec3(1, 0, 0), 0.01f, 0.0f), 0.0f);
 }
 
 TEST(HybridSampler, ExtremesGiveFiniteImages) {

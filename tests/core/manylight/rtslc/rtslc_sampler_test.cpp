@@ -48,19 +48,20 @@ std::pair<uint32_t, uint32_t> leaf_range(const LightTree& t, uint32_t node) {
 
 // The exact leaf probabilities below `from` sum to 1, match what each traversal reports, and
 // match the observed frequencies of 200k traversals (chi-square at 1e-6). Returns the exact
-// probabilities of the leaves [lo, hi) below `from`.
+// probabilities of the leaves [lo, hi) below `from`. floor: the node-distance floor.
 std::vector<double> check_leaf_probabilities(const LightTree& tree, uint32_t from, vec3 x, vec3 n, RtslcWeights weights,
-                                             uint32_t seed) {
+                                             uint32_t seed, float floor = 0.0f) {
   auto [lo, hi] = leaf_range(tree, from);
   std::vector<double> expected(hi - lo);
   double sum = 0.0;
-  for (uint32_t l = lo; l < hi; ++l) sum += expected[l - lo] = rtslc_leaf_probability(tree, from, l, x, n, weights);
+  for (uint32_t l = lo; l < hi; ++l)
+    sum += expected[l - lo] = rtslc_leaf_probability(tree, from, l, x, n, weights, floor);
   EXPECT_NEAR(sum, 1.0, 1e-5) << "from " << from;
   const int samples = 200000;
   std::vector<double> observed(hi - lo, 0.0);
   for (int i = 0; i < samples; ++i) {
     PixelSampler sampler = pixel_sampler(seed, from, uint32_t(i));
-    RtslcSample s = rtslc_traverse(tree, from, x, n, sampler, weights);
+    RtslcSample s = rtslc_traverse(tree, from, x, n, sampler, weights, floor);
     if (s.node == kNoNode || s.node < lo || s.node >= hi) {
       ADD_FAILURE() << "traversal from " << from << " ended at " << s.node;
       return expected;
@@ -83,18 +84,35 @@ TEST(RtslcTraversal, LeafProbabilitiesSumToOneAndMatchFrequencies) {
   for (uint32_t from : {tree.root, 2u, 3u, 6u}) check_leaf_probabilities(tree, from, x, n, RtslcWeights::rtslc, 11);
 }
 
+// With a node-distance floor, from inside the VPLs' cloud (where boxes hold x and the floor acts):
+// both weights' leaf probabilities still sum to 1 and match the traversals, and differ from the
+// papers' rules.
+TEST(RtslcTraversal, NodeDistanceFloorLeafProbabilitiesMatchFrequencies) {
+  VplSet vpls = random_vpls(50, 1);
+  LightTree tree = perfect_tree(vpls);
+  const vec3 x(0.5f, 0.5f, 0.5f), n = glm::normalize(vec3(0.2f, 0.1f, -1.0f));
+  for (RtslcWeights weights : {RtslcWeights::rtslc, RtslcWeights::slc}) {
+    std::vector<double> floored = check_leaf_probabilities(tree, tree.root, x, n, weights, 12, 0.5f);
+    auto [lo, hi] = leaf_range(tree, tree.root);
+    double moved = 0.0;
+    for (uint32_t l = lo; l < hi; ++l)
+      moved += std::abs(floored[l - lo] - rtslc_leaf_probability(tree, tree.root, l, x, n, weights, 0.0f));
+    EXPECT_GT(moved, 0.05) << "the floor changed no probability";
+  }
+}
+
 TEST(RtslcTraversal, ChildProbabilityRules) {
   LightNode a{}, b{}, empty{};
   a.bounds_lo = vec3(1, 0, 0), a.bounds_hi = vec3(2, 1, 1), a.intensity = vec3(1), a.vpl_count = 1;
   b.bounds_lo = vec3(-2, 0, 0), b.bounds_hi = vec3(-1, 1, 1), b.intensity = vec3(1), b.vpl_count = 1;
   empty.bounds_lo = vec3(kInf), empty.bounds_hi = vec3(-kInf);
   vec3 x(0, 0.5f, 0.5f), n(1, 0, 0);  // a in front, b behind
-  EXPECT_EQ(rtslc_child_probability(empty, a, x, n), 0.0f);
-  EXPECT_EQ(rtslc_child_probability(a, empty, x, n), 1.0f);
-  EXPECT_EQ(rtslc_child_probability(a, b, x, n), 1.0f);
-  EXPECT_EQ(rtslc_child_probability(b, a, x, n), 0.0f);
-  EXPECT_NEAR(rtslc_child_probability(a, a, x, vec3(0, 1, 0)), 0.5f, 1e-6f);
-  EXPECT_EQ(rtslc_child_probability(b, b, x, n), 0.0f);  // dead branch
+  EXPECT_EQ(rtslc_child_probability(empty, a, x, n, 0.0f), 0.0f);
+  EXPECT_EQ(rtslc_child_probability(a, empty, x, n, 0.0f), 1.0f);
+  EXPECT_EQ(rtslc_child_probability(a, b, x, n, 0.0f), 1.0f);
+  EXPECT_EQ(rtslc_child_probability(b, a, x, n, 0.0f), 0.0f);
+  EXPECT_NEAR(rtslc_child_probability(a, a, x, vec3(0, 1, 0), 0.0f), 0.5f, 1e-6f);
+  EXPECT_EQ(rtslc_child_probability(b, b, x, n, 0.0f), 0.0f);  // dead branch
 }
 
 TEST(RtslcTraversal, SlcWeightsLeafProbabilitiesSumToOneAndMatchFrequencies) {
@@ -109,7 +127,7 @@ TEST(RtslcTraversal, SlcWeightsLeafProbabilitiesSumToOneAndMatchFrequencies) {
     for (uint32_t from : {tree.root, 2u, 3u, 6u}) {
       std::vector<double> p = check_leaf_probabilities(tree, from, x, n, RtslcWeights::slc, 13);
       // The weights are Yuksel's (slc_child_weights): at the start node P_0 = w_0 / (w_0 + w_1).
-      vec2 w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, basis_from_normal(n));
+      vec2 w = slc_child_weights(tree[tree[from].left], tree[tree[from].right], x, basis_from_normal(n), 0.0f);
       double left = 0.0;
       for (size_t l = 0; l < p.size() / 2; ++l) left += p[l];
       EXPECT_NEAR(left, double(w.x) / (double(w.x) + double(w.y)), 1e-5) << "from " << from;

@@ -131,6 +131,29 @@ TEST(SlcSampler, ZeroWeightsAndDeadBranchesMatchTraversalFrequencies) {
 // Unbiasedness, exactly: the estimator's expectation is the sum of c_j over the leaves it can
 // reach (c_j / P_j drawn with probability P_j), so it equals exhaustive (without visibility,
 // which both trace the same way) iff every VPL with c_j > 0 has P_j > 0.
+// The node-distance floor in place of Yuksel's near rule, at the same point inside the cloud:
+// the walk still follows its probabilities, reaches the VPLs the near rule reaches, and weighs
+// them otherwise.
+TEST(SlcSampler, NodeDistanceFloorMatchesTraversalFrequencies) {
+  VplSet vpls = random_vpls(50, 11);
+  ShadingPoint sp = test_point();
+  for (const char* kind : {"radix", "perfect"}) {
+    SCOPED_TRACE(kind);
+    LightTreeParams params;
+    params.tree = kind;
+    LightTree tree = build_light_tree(vpls, params);
+    std::vector<double> p = stop_probabilities(tree, slc_weights(sp, 0.5f), stop_at_leaves);
+    std::vector<double> yuksel = stop_probabilities(tree, slc_weights(sp), stop_at_leaves);
+    double moved = 0.0;
+    for (size_t i = 0; i < p.size(); ++i) {
+      EXPECT_EQ(p[i] > 0.0, yuksel[i] > 0.0) << i;
+      moved += std::abs(p[i] - yuksel[i]);
+    }
+    EXPECT_GT(moved, 0.05) << "the floor changed no probability";
+    check_frequencies(tree, slc_weights(sp, 0.5f), stop_at_leaves, p, 200000);
+  }
+}
+
 TEST(SlcSampler, EveryContributingVplIsReachable) {
   HashRng rng = hash_rng(17, 0, 0);
   for (int set = 0; set < 10; ++set) {

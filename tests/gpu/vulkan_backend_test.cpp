@@ -199,7 +199,7 @@ TEST(VulkanBackend, FocusedBouncesGiveTheCpuImages) {
             1e-3);
 }
 
-// The node-distance floor made to act on the 10 km room (whose VPLs span a few view lengths):
+// The node-distance floor made to act on the 10 km room (whose VPLs span under 50 view lengths):
 // the whole frame, host side included, gives the CPU's images with every tree method.
 TEST(VulkanBackend, NodeDistanceFloorGivesTheCpuImages) {
   SKIP_WITHOUT_GPU("many_light");

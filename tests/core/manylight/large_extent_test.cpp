@@ -104,7 +104,7 @@ TEST_P(NodeDistanceFloor, KeepsEveryWalkUnbiased) {
     p["substitute_max_extent"] = 1e-6;
   }
   p["node_distance_floor"] = 0.5;
-  p["node_distance_floor_above"] = 0.0;  // the Cornell box's VPLs span about one view length
+  p["node_distance_floor_above"] = 0.0;  // the Cornell box's VPLs span under 50 view lengths
   RenderResult r = render_frame(scene, test::small_options(GetParam().c_str(), 4096, 16), p);
   EXPECT_EQ(r.frame.method_counters["tree"]["node_distance_floor"], 0.5);
   EXPECT_EQ(test::z_test_failures(test::frame_layer(r, "indirect"), test::frame_layer(r, "indirect_variance"),

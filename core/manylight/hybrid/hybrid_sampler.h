@@ -33,7 +33,7 @@
 namespace sst {
 
 struct HybridParams {
-  TreeMethodParams tree_method;
+  TreeMethodParams tree_method{kNodeFloorAboveForCuts};
   int block_size = 8;
   int cut_size = 8;
   // The thesis gives no values for n_min and d_max; 0.9 (~25 degrees) and a quarter of the point's

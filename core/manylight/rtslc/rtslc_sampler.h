@@ -27,7 +27,7 @@
 namespace sst {
 
 struct RtslcParams {
-  TreeMethodParams tree_method;
+  TreeMethodParams tree_method{kNodeFloorAboveForCuts};
   int block_size = 8;
   int cut_size = 8;
   int interleave = 1;

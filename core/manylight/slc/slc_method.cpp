@@ -5,10 +5,10 @@
 namespace sst {
 
 MethodInfo slc_method_info() {
-  return method_info<TreeMethodParams>("slc",
+  return method_info<SlcParams>("slc",
                                        "stochastic lightcuts (Yuksel 2019): one root-to-leaf light-tree walk per "
                                        "sample, by intensity x cosine bound / distance^2",
-                                       [](const TreeMethodParams& p) -> std::unique_ptr<Method> {
+                                       [](const SlcParams& p) -> std::unique_ptr<Method> {
                                          return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p),
                                                                                   std::make_unique<SlcSampler>(p.tree));
                                        });

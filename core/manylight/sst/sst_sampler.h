@@ -57,7 +57,7 @@ struct SstParams {
 };
 
 struct SstMethodParams {
-  TreeMethodParams tree_method;
+  TreeMethodParams tree_method{kNodeFloorAboveForWalks};
   SstParams sst;
   template <class V>
   void visit(V&& v) {

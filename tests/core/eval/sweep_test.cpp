@@ -232,7 +232,7 @@ TEST(Sweep, MetricsCheckPassesOnCleanCodeAndFailsOnSwappedWeights) {
 
   MethodInfo broken = find_method("slc");
   broken.create = [](const json& j) -> std::unique_ptr<Method> {
-    TreeMethodParams p;
+    SlcParams p;
     params_from_json(p, j, "slc");
     return std::make_unique<ManyLightMethod>(p.vpl, params_to_json(p), std::make_unique<SwappedWeightsSlc>(p.tree));
   };

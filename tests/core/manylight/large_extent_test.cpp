@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/lighttree/light_tree.h"
+#include "core/pipeline/method_registry.h"
 #include "core/pipeline/renderer.h"
 #include "core/scene/default_scene.h"
 #include "core/scene/gltf_loader.h"
@@ -104,7 +105,7 @@ TEST_P(NodeDistanceFloor, KeepsEveryWalkUnbiased) {
     p["substitute_max_extent"] = 1e-6;
   }
   p["node_distance_floor"] = 0.5;
-  p["node_distance_floor_above"] = 0.0;  // the Cornell box's VPLs span under 50 view lengths
+  p["node_distance_floor_above"] = 0.0;  // the Cornell box's VPLs span under every threshold
   RenderResult r = render_frame(scene, test::small_options(GetParam().c_str(), 4096, 16), p);
   EXPECT_EQ(r.frame.method_counters["tree"]["node_distance_floor"], 0.5);
   EXPECT_EQ(test::z_test_failures(test::frame_layer(r, "indirect"), test::frame_layer(r, "indirect_variance"),
@@ -118,8 +119,11 @@ TEST_P(NodeDistanceFloor, KeepsEveryWalkUnbiased) {
 
 // The floor acts where the VPLs' box is wider than node_distance_floor_above view lengths, as in
 // a landscape around the view, and not in a room (the default scene: the papers' rules, bits
-// and all).
+// and all). The threshold is each method's: 3 view lengths for slc and sst, 50 for the cut
+// methods (TreeMethodParams).
 TEST(NodeDistanceFloor, ActsOnlyWhereTheVplsSpanManyViewLengths) {
+  for (auto [method, above] : {std::pair{"slc", 3.0}, {"sst", 3.0}, {"rtslc", 50.0}, {"hybrid", 50.0}})
+    EXPECT_EQ(create_method(method, {})->params()["node_distance_floor_above"], above) << method;
   LightTreeParams params;  // floor 0.1 above 50 view lengths
   const Bounds3 km{vec3(-500.0f, 0.0f, -500.0f), vec3(500.0f, 10.0f, 500.0f)};
   EXPECT_EQ(node_distance_floor_for(params, km, 10.0f), 0.1f);

@@ -179,7 +179,8 @@ int run_sequence(const Args& args, sst::Scene& scene, const sst::RenderOptions& 
                       {"images", written},
                       {"frame_ms", ms},
                       {"timings_ms", sst::stage_statistics({r.timer})},
-                      {"counters", r.frame.counters.to_json(ms)}});
+                      {"counters", r.frame.counters.to_json(ms)},
+                      {"method_counters", r.frame.method_counters}});
     // The record needs the counters of each frame, not its images.
     sst::FrameOutput counters_only;
     counters_only.counters = r.frame.counters;

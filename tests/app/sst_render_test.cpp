@@ -193,6 +193,8 @@ TEST(SstRender, SequenceWritesNumberedFramesWithMotionARecordAndAPreview) {
   EXPECT_EQ(rec["frames"][0]["index"], 5);
   EXPECT_NE(rec["frames"][0]["seed"], rec["frames"][1]["seed"]);
   EXPECT_TRUE(rec["frames"][2]["timings_ms"].contains("denoise"));
+  ASSERT_TRUE(rec["frames"][2].contains("method_counters"));
+  EXPECT_EQ(rec["frames"][2]["method_counters"], rec["method_counters"]);  // the last frame's
   EXPECT_EQ(rec["options"]["frames"], 3);
   // The preview needs ffmpeg; without it the record says why there is none.
   if (rec["outputs"].contains("preview"))

@@ -52,7 +52,7 @@ void VulkanGi10::allocate(const Gi10Sizes& s) {
   uint64_t px = s.pixels(), nt = s.tiles(), ns = s.spawns(), t = s.hash_tiles;
   const std::pair<uint64_t, size_t> shapes[kBufferCount] = {
       {1, sizeof(glsl::Gi10Frame)}, {2 * px, sizeof(glsl::Gi10Pixel)}, {px, 16},  {2 * uint64_t(s.mask_total), 4},
-      {2 * nt * 64, 16},            {2 * nt * 9, 16},                 {s.spawn_words(), 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
+      {s.radiance_entries(), 16},   {2 * nt * 9, 16},                 {s.spawn_words(), 4}, {ns * 64, sizeof(glsl::Gi10Ray)},
       {s.hash_words(), 4},          {t * kGiCellsPerTile, 16},                     {t * 64 * kGiAccumWords, 4},  {3 * px, 16},
       {3 * px, 16},                 {px, 16},                         {GI10_COUNTERS, 4}, {px, 16},
       {s.ray_reservoirs(), sizeof(RestirReservoir)}, {s.slot_entries(), sizeof(RestirReservoir)},

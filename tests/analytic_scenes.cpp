@@ -265,4 +265,23 @@ Scene light_field(uint32_t seed, int quads, int points, int spots) {
   return s;
 }
 
+Scene thin_slats(int slats, float width, float spacing) {
+  Scene s;
+  s.source = "generated:thin_slats";
+  s.materials.push_back(diffuse_material("diffuse", 0.6f, 0.0f));
+  add_quad(s, {-4, 0, 3}, {4, 0, 3}, {4, 0, -3}, {-4, 0, -3}, 0);
+  add_quad(s, {-4, 0, -2.5f}, {4, 0, -2.5f}, {4, 3, -2.5f}, {-4, 3, -2.5f}, 0);
+  const float h = 0.5f * width;
+  for (int i = 0; i < slats; ++i) {
+    float x = spacing * (float(i) - 0.5f * float(slats - 1));
+    add_quad(s, {x - h, 0, -1.5f}, {x + h, 0, -1.5f}, {x + h, 2.5f, -1.5f}, {x - h, 2.5f, -1.5f}, 0);
+  }
+  s.lights.push_back(punctual_light(LightType::Point, vec3(0.0f, 2.5f, 0.5f), vec3(0, -1, 0), vec3(10.0f)));
+  Camera c = camera("front", vec3(0.0f, 1.2f, 2.5f), 1.0f);
+  c.aspect = 4.0f / 3.0f;
+  s.cameras.push_back(c);
+  s.finalize_bounds();
+  return s;
+}
+
 }  // namespace sst::test

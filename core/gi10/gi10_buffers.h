@@ -1,11 +1,12 @@
-// GI-1.0's stages (docs/design/gi10.md: the paper's S1-S20 without the optional side cache and
-// world-space ReSTIR), each as the work of one element (a pixel, a screen tile, a probe, a ray, a
-// hash tile), written once for both backends: gi10_method.cpp runs them in oneTBB loops,
-// gpu/shaders/gi10.comp dispatches them. Every sum is taken in a fixed order by one invocation, or
-// in fixed point (gi_fixed_split), so both backends and every thread count give the same bits.
-// The stages live in three files by the part of the method they serve: gi10_probes.h (screen
-// probes), gi10_cache.h (the world-space radiance cache), gi10_resolve.h (per-pixel irradiance and
-// the denoiser); this file holds what they all read, and gi10_stages.h the entry both backends call.
+// GI-1.0's stages (docs/design/gi10.md: the paper's S1-S21 but its light grid), each as the work
+// of one element (a pixel, a screen tile, a probe, a ray, a hash tile), written once for both
+// backends: gi10_method.cpp runs them in oneTBB loops, gpu/shaders/gi10.comp dispatches them.
+// Every sum is taken in a fixed order by one invocation, or in fixed point (gi_fixed_split), so
+// both backends and every thread count give the same bits.
+// The stages live in files by the part of the method they serve: gi10_probes.h (screen probes),
+// gi10_side_cache.h (their LRU side cache), gi10_cache.h (the world-space radiance cache),
+// gi10_resolve.h (per-pixel irradiance and the denoiser); this file holds what they all read,
+// gi10_probe_texels.h a probe's texel sums, and gi10_stages.h the entry both backends call.
 //
 // Hooks, besides the scene's, lights' and rays' (core/pt/trace_path.h lists those):
 //   GI_CTX_PARAM / GI_CTX   the buffers' context parameter and argument (empty in GLSL)
@@ -15,8 +16,9 @@
 //
 // Buffer layout (element type, count): PIXELS Gi10Pixel 2 W H (this frame's and the previous, by
 // frame parity); EMISSION vec4 W H (emission seen at the pixel centres); MASK uint 2 M (M: all
-// mips of the tile grid); RADIANCE vec4 2 Nt 64 (rgb, hit distance); SH vec4 2 Nt 9; SPAWN uint
-// gi_spawn_words (spawn list and the patch's lists); RAYS Gi10Ray Ns 64; HASH uint 2 T (checksums,
+// mips of the tile grid); RADIANCE vec4 2 Nt 64 (rgb, hit distance; with side_cache 66 S more:
+// its slots); SH vec4 2 Nt 9; SPAWN uint gi_spawn_words (spawn list and the patch's lists; with
+// side_cache its LRU order, claims and lists after them: gi_side_base); RAYS Gi10Ray Ns 64; HASH uint 2 T (checksums,
 // then last-touch frames; with world_restir 3 T more: each reservoir slot's winning ray key this
 // frame, then the frame + 2 at which each parity's slot was written); VALUES vec4 T 85; ACCUM uint T 64 kGiAccumWords; DENOISE vec4 3 W H
 // (irradiance + hint, history x2); AUX vec4 3 W H (colour delta and blur masks x2, filter
@@ -78,6 +80,38 @@ SST_FUNC bool gi_is_miss(float distance) { return distance >= 0.5f * kGiMissDist
 // world_restir: reservoir slot i's word in HASH (the slot's key this frame: slot_keys + i; the
 // frame stamp of parity p's entry: slot_keys + T + p T + i).
 SST_FUNC uint gi_slot_keys(SST_IN(Gi10Frame) f) { return 2u * gi_hash_tiles(f); }
+
+// SPAWN's words: [0, Ns) the spawn list (packed seed or kGiNoProbe); [Ns, 2Ns) override flags;
+// [2Ns, 3Ns) the override list; [3Ns, 3Ns + Nt) empty-tile flags; then the empty list (Nt); then
+// the blocks' counts (override blocks, then empty blocks); then the two list lengths; then, with
+// side_cache, its words (gi_side_* below).
+SST_FUNC uint gi_override_blocks(SST_IN(Gi10Frame) f) { return (gi_spawns(f) + kGiBlock - 1u) / kGiBlock; }
+SST_FUNC uint gi_empty_blocks(SST_IN(Gi10Frame) f) { return (gi_tiles(f) + kGiBlock - 1u) / kGiBlock; }
+SST_FUNC uint gi_spawn_block_base(SST_IN(Gi10Frame) f) { return 3u * gi_spawns(f) + 2u * gi_tiles(f); }
+SST_FUNC uint gi_spawn_words(SST_IN(Gi10Frame) f) {
+  return gi_spawn_block_base(f) + gi_override_blocks(f) + gi_empty_blocks(f) + 2u;
+}
+
+// side_cache's words in SPAWN, from gi_side_base on, for S slots (S = Nt: a slot per screen tile, as
+// the paper's side cache has the probe grid's shape) and K = kGiSideListLength: the LRU order
+// (position -> slot) 2 S, two copies by frame parity (a frame reads its own, its reorder writes the
+// next frame's); CLAIM S (per slot, the lowest claim key of this frame: gi_side_key); SLOT_TILE S
+// (the screen tile the slot's probe projects into, or kGiNoProbe); the tiles' lists Nt K (a
+// tile's first K slots in slot order, kGiNoProbe after the last); per spawned probe 2 Ns (the slot
+// its evicted predecessor goes to, the slot its own radiance updates); the reorder's block counts
+// 2 B (B blocks of kGiBlock positions). In RADIANCE, after the probes' 2 Nt 64: the slots'
+// texels S 64, then per slot its probe's position (w = 1 once written) and normal.
+SST_FUNC uint gi_side_base(SST_IN(Gi10Frame) f) { return gi_spawn_words(f); }
+SST_FUNC uint gi_side_order(SST_IN(Gi10Frame) f, uint parity) { return gi_side_base(f) + parity * f.side_slots; }
+SST_FUNC uint gi_side_claims(SST_IN(Gi10Frame) f) { return gi_side_base(f) + 2u * f.side_slots; }
+SST_FUNC uint gi_side_slot_tiles(SST_IN(Gi10Frame) f) { return gi_side_base(f) + 3u * f.side_slots; }
+SST_FUNC uint gi_side_lists(SST_IN(Gi10Frame) f) { return gi_side_base(f) + 4u * f.side_slots; }
+SST_FUNC uint gi_side_probes(SST_IN(Gi10Frame) f) { return gi_side_lists(f) + gi_tiles(f) * kGiSideListLength; }
+SST_FUNC uint gi_side_blocks(SST_IN(Gi10Frame) f) { return (f.side_slots + kGiBlock - 1u) / kGiBlock; }
+SST_FUNC uint gi_side_block_counts(SST_IN(Gi10Frame) f) { return gi_side_probes(f) + 2u * gi_spawns(f); }
+SST_FUNC uint gi_side_texels(SST_IN(Gi10Frame) f) { return 2u * gi_tiles(f) * 64u; }
+SST_FUNC uint gi_side_positions(SST_IN(Gi10Frame) f) { return gi_side_texels(f) + f.side_slots * 64u; }
+SST_FUNC uint gi_side_normals(SST_IN(Gi10Frame) f) { return gi_side_positions(f) + f.side_slots; }
 
 // The screen-space cell size at a point: the distance to the eye times k (Alg. 6 of the paper).
 SST_FUNC float gi_cell_size(vec3 eye, vec3 x, float k) { return length3(eye - x) * k; }

@@ -56,7 +56,10 @@ using glm::vec4;
 #define GI10_STAGE_LIST_COMPACT 22u
 #define GI10_STAGE_PATCH 23u
 #define GI10_STAGE_STORE_RESERVOIR 24u
-#define GI10_STAGES 25u
+#define GI10_STAGE_SIDE_LOOKUP 25u
+#define GI10_STAGE_SIDE_ALLOCATE 26u
+#define GI10_STAGE_SIDE_REORDER 27u
+#define GI10_STAGES 28u
 
 // Counters (Gi10 counters buffer, uint each).
 #define GI10_COUNT_PROBES 0u          // spawned probes traced
@@ -74,7 +77,11 @@ using glm::vec4;
 #define GI10_COUNT_LIVE_TILES 12u
 #define GI10_COUNT_BLUR_WORK 13u      // S = sum over pixels of (2 m + 1)^2 (the denoiser's blur radius)
 #define GI10_COUNT_RESERVOIRS_REUSED 14u  // world_restir: cache points that merged the previous frame's reservoir
-#define GI10_COUNTERS 16u
+#define GI10_COUNT_NO_HISTORY 15u     // spawned probes whose reconstruction found no texel (traced from scratch)
+#define GI10_COUNT_SIDE_EVICTED 16u   // side_cache: spawned probes that evicted the previous probe of their tile
+#define GI10_COUNT_SIDE_ALLOCATED 17u  // side_cache: slots taken from the front of the LRU order
+#define GI10_COUNT_SIDE_USED 18u      // side_cache: spawned probes whose reconstruction a cached probe fed
+#define GI10_COUNTERS 20u
 
 // Everything the stages read that is not a buffer. The host fills it once per frame.
 struct Gi10Frame {
@@ -113,7 +120,7 @@ struct Gi10Frame {
   uint restir_candidates;    // world-space ReSTIR: light samples per cache point (8)
   float restir_cap;          // its history's M cap, in multiples of the new reservoir's (20)
   int path_bounces;          // cache_shading path: bounces counted from the pixel (8)
-  uint pad0;
+  uint side_slots;           // side_cache: its slots, as many as screen tiles; 0: off
 };
 
 // The G-buffer of a pixel centre: the first hit of the ray through the centre.

@@ -26,6 +26,13 @@ SST_CONSTANT uint kGiPathSeed = 0x47495041u;  // "GIPA"
 SST_CONSTANT int kGiPathRrMinBounces = 3;
 SST_CONSTANT uint kGiAccumWords = 7u;  // per cache cell: 64-bit fixed-point r, g, b, then the count
 SST_CONSTANT uint kGiBlock = 256u;     // elements per block of the spawn stage's list compaction
+// side_cache: the cached probes a screen tile lists (the lowest slots that project into it), and
+// the key of a probe's claim on a slot: its kind times 2^24 plus the probe's index, the lowest
+// winning (kind 0: a slot taken from the LRU order, 1: an evicted probe's matching slot, 2: the
+// slot a new probe's radiance updates).
+SST_CONSTANT uint kGiSideListLength = 4u;
+SST_CONSTANT uint kGiSideKindShift = 24u;
+SST_CONSTANT uint kGiSideAllocate = 0xFFFFFFFEu;  // an evicted probe that found no slot to match
 
 SST_FUNC float gi_sign(float x) { return x > 0.0f ? 1.0f : (x < 0.0f ? -1.0f : 0.0f); }
 

@@ -28,7 +28,8 @@ const char* kStageNames[] = {"gbuffer", "purge",  "reproject", "spawn",       "s
                              "shade",   "update", "resolve",   "blend",       "mask_mip",    "filter",
                              "project", "interpolate", "denoise_reproject", "blur_mask", "filter_gi",
                              "copy_probes", "feedback", "empty_tiles", "list_count", "list_scan",
-                             "list_compact", "patch", "store_reservoir"};
+                             "list_compact", "patch", "store_reservoir", "side_lookup", "side_allocate",
+                             "side_reorder"};
 static_assert(sizeof(kStageNames) / sizeof(kStageNames[0]) == GI10_STAGES);
 
 // The paper's three timing buckets (docs/design/gi10.md, the record); the G-buffer, feedback
@@ -64,7 +65,7 @@ class Gi10Cpu final : public Gi10Executor {
     uint64_t px = s.pixels(), nt = s.tiles(), ns = s.spawns(), t = s.hash_tiles;
     pixels_.assign(2 * px, glsl::Gi10Pixel{});
     mask_.assign(2 * uint64_t(s.mask_total), kGiNoProbe);
-    radiance_.assign(2 * nt * 64, vec4(0.0f));
+    radiance_.assign(s.radiance_entries(), vec4(0.0f));
     sh_.assign(2 * nt * 9, vec4(0.0f));
     spawn_.assign(s.spawn_words(), 0u);
     rays_.assign(ns * 64, glsl::Gi10Ray{});
@@ -204,6 +205,7 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
   if (choice("world_restir_combine", p.world_restir_combine, {"unbiased", "biased"}) == "unbiased")
     r.flags |= GI10_WORLD_RESTIR_UNBIASED;
   if (choice("cache_shading", p.cache_shading, {"light", "path"}) == "path") r.flags |= GI10_CACHE_PATHS;
+  r.side_cache = pick("side_cache", p.side_cache, {"auto", "on", "off"}, "off", "on") == "on";
   if (p.cache_path_bounces < 1 || p.cache_path_bounces > 64) throw Error("gi10 parameter cache_path_bounces must be in 1..64");
   if (p.world_restir_candidates < 1 || p.world_restir_candidates > 64)
     throw Error("gi10 parameter world_restir_candidates must be in 1..64");
@@ -230,7 +232,13 @@ Gi10Resolved resolve_gi10(const Gi10Params& p) {
 }
 
 uint64_t Gi10Sizes::list_blocks() const { return (spawns() + kGiBlock - 1) / kGiBlock + (tiles() + kGiBlock - 1) / kGiBlock; }
-uint64_t Gi10Sizes::spawn_words() const { return 3 * spawns() + 2 * tiles() + list_blocks() + 2; }
+uint64_t Gi10Sizes::spawn_words() const {
+  const uint64_t lists = 3 * spawns() + 2 * tiles() + list_blocks() + 2;
+  if (side_slots == 0) return lists;
+  const uint64_t side_blocks = (side_slots + kGiBlock - 1) / kGiBlock;
+  return lists + 4 * uint64_t(side_slots) + tiles() * kGiSideListLength + 2 * spawns() + 2 * side_blocks;
+}
+uint64_t Gi10Sizes::radiance_entries() const { return 2 * tiles() * 64 + 66 * uint64_t(side_slots); }
 uint64_t Gi10Sizes::hash_words() const { return 2 * uint64_t(hash_tiles) + 3 * uint64_t(reservoir_slots); }
 uint64_t Gi10Sizes::ray_reservoirs() const { return reservoir_slots > 0 ? spawns() * 64 : 1; }
 uint64_t Gi10Sizes::slot_entries() const { return 2 * std::max<uint64_t>(reservoir_slots, 1); }
@@ -257,6 +265,7 @@ Gi10Sizes gi10_sizes(int width, int height, const Gi10Params& params) {
   }
   s.hash_tiles = (1u << params.hash_buckets_log2) << params.tiles_per_bucket_log2;
   s.reservoir_slots = params.world_restir ? s.hash_tiles : 0u;
+  s.side_slots = resolve_gi10(params).side_cache ? uint32_t(s.tiles()) : 0u;
   return s;
 }
 
@@ -392,6 +401,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   f.restir_candidates = uint32_t(params_.world_restir_candidates);
   f.restir_cap = params_.world_restir_cap;
   f.path_bounces = params_.cache_path_bounces;
+  f.side_slots = sizes_.side_slots;
   executor.begin_frame(context, f);
   executor.clear_counters();
 
@@ -434,13 +444,22 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   run(GI10_STAGE_LIST_SCAN, 0, 1);
   run(GI10_STAGE_LIST_COMPACT, 0, sizes_.list_blocks());
   run(GI10_STAGE_PATCH, 0, std::min(sizes_.spawns(), sizes_.tiles()));
+  if (sizes_.side_slots > 0)
+    for (uint32_t pass = 0; pass <= kGiSideListLength; ++pass) run(GI10_STAGE_SIDE_LOOKUP, pass, sizes_.side_slots);
   run(GI10_STAGE_SAMPLE, 0, sizes_.spawns());
+  if (sizes_.side_slots > 0) run(GI10_STAGE_SIDE_ALLOCATE, 0, 1);
   run(GI10_STAGE_TRACE, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_SHADE, 0, sizes_.spawns() * 64);
   if (params_.world_restir) run(GI10_STAGE_STORE_RESERVOIR, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_UPDATE, 0, sizes_.hash_tiles);
   run(GI10_STAGE_RESOLVE, 0, sizes_.spawns() * 64);
   run(GI10_STAGE_BLEND, 0, sizes_.spawns());
+  if (sizes_.side_slots > 0) {
+    const uint64_t blocks = (sizes_.side_slots + kGiBlock - 1) / kGiBlock;
+    run(GI10_STAGE_SIDE_REORDER, 0, blocks);
+    run(GI10_STAGE_SIDE_REORDER, 1, 1);
+    run(GI10_STAGE_SIDE_REORDER, 2, blocks);
+  }
   for (uint32_t level = 1; level < sizes_.mask_levels; ++level) {
     glm::uvec2 size = gi10_mask_level_size(sizes_, level);
     run(GI10_STAGE_MASK_MIP, level, uint64_t(size.x) * size.y);
@@ -507,6 +526,10 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
                              {"cache_shadow_rays", c[GI10_COUNT_SHADOW_RAYS]},
                              {"bypass_rays", c[GI10_COUNT_BYPASS]},
                              {"reservoirs_reused", c[GI10_COUNT_RESERVOIRS_REUSED]},
+                             {"probes_without_history", c[GI10_COUNT_NO_HISTORY]},
+                             {"side_evicted", c[GI10_COUNT_SIDE_EVICTED]},
+                             {"side_allocated", c[GI10_COUNT_SIDE_ALLOCATED]},
+                             {"side_used", c[GI10_COUNT_SIDE_USED]},
                              {"emissive_rays", c[GI10_COUNT_EMISSIVE]},
                              {"probe_rays_per_pixel", double(c[GI10_COUNT_PROBES]) * 64.0 / pixels},
                              {"cache_shadow_rays_per_pixel", double(c[GI10_COUNT_SHADOW_RAYS]) / pixels},

@@ -24,12 +24,14 @@ struct Gi10Sizes {
   uint32_t mask_levels = 0, mask_total = 0;  // mips of the probe mask and their elements (one copy)
   uint32_t hash_tiles = 0;
   uint32_t reservoir_slots = 0;  // world-space ReSTIR's reservoir slots (0: world_restir off)
+  uint32_t side_slots = 0;       // side_cache's slots, one per screen tile (0: side_cache off)
   uint64_t pixels() const { return uint64_t(width) * height; }
   uint64_t tiles() const { return uint64_t(tiles_x) * tiles_y; }
   uint64_t spawns() const { return uint64_t(spawn_x) * spawn_y; }
   // Blocks of the spawn stage's list compaction (override flags, then empty-tile flags).
   uint64_t list_blocks() const;
-  uint64_t spawn_words() const;  // the SPAWN buffer's elements (gi10_stages.h)
+  uint64_t spawn_words() const;  // the SPAWN buffer's elements (gi10_buffers.h), side_cache's included
+  uint64_t radiance_entries() const;  // the RADIANCE buffer's: two probe grids, side_cache's slots
   uint64_t hash_words() const;   // the HASH buffer's: checksums, touches, world_restir's keys
   // world_restir's buffers (gi10_buffers.h), one element each when it is off: RAY_RESERVOIRS and
   // each of SLOT_RESERVOIRS and SLOT_SURFACES.

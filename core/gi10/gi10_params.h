@@ -46,6 +46,7 @@ struct Gi10Params {
   std::string world_restir_combine = "unbiased";
   std::string cache_shading = "light";
   int cache_path_bounces = 8;
+  std::string side_cache = "auto";
 
   template <class V>
   void visit(V&& v) {
@@ -113,6 +114,10 @@ struct Gi10Params {
     v("world_restir_candidates", world_restir_candidates, "world_restir: light samples per cache point (Capsaicin 8)");
     v("world_restir_cap", world_restir_cap, "world_restir: the previous reservoir's M is capped at this many times the "
       "new one's (Capsaicin 20)");
+    v("side_cache", side_cache, "auto|on|off: the paper's LRU side cache of screen probes (2.1.8; fair off, capsaicin "
+      "on): a probe that a new one replaces without feeding its reconstruction is kept in a slot, and new probes near it "
+      "reconstruct from it, so probes on thin geometry keep their history; a slot per screen tile, the least recently "
+      "used taken first");
     v("world_restir_combine", world_restir_combine, "world_restir: unbiased (the previous sample's weight checked with "
       "a shadow ray, as ReSTIR DI's restir_combine) or biased (without; Capsaicin merges without it)");
   }
@@ -124,6 +129,7 @@ struct Gi10Resolved {
   uint32_t flags = 0;
   float sh_weight = 0.0f;
   bool capsaicin_cells = false;
+  bool side_cache = false;
 };
 Gi10Resolved resolve_gi10(const Gi10Params& p);
 void validate(const Gi10Params& p);

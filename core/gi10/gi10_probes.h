@@ -5,7 +5,7 @@
 // probe rays' radiance comes from gi10_cache.h.
 #ifndef SST_CORE_GI10_GI10_PROBES_H
 #define SST_CORE_GI10_GI10_PROBES_H
-#include "core/gi10/gi10_buffers.h"
+#include "core/gi10/gi10_side_cache.h"
 #include "core/render/pinhole.h"
 #include "core/render/reprojection.h"
 
@@ -33,66 +33,6 @@ SST_FUNC void gi_stage_gbuffer(SCENE_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint i
   }
   GI_PIXELS(gi_parity(GF) * gi_pixels(GF) + index) = p;
   GI_EMISSION(index) = gi_vec4(emission, 0.0f);
-}
-
-// ---- probe texel accumulation (S2, S6, S14): one invocation owns the 64 sums -----------------------
-struct GiTexelSums {
-  vec4 sum[64];  // radiance, hit distance
-  float count[64];
-};
-
-SST_FUNC void gi_sums_clear(SST_INOUT(GiTexelSums) a) {
-  for (uint c = 0u; c < 64u; ++c) {
-    a.sum[c] = vec4(0.0f);
-    a.count[c] = 0.0f;
-  }
-}
-
-// Adds the texel of another probe (at xq, frame fq) seen from probe x, n (frame fx): its radiance
-// arrives from the point it hit (parallax), or, for a miss, from its direction.
-SST_FUNC void gi_sums_add_reprojected(SST_INOUT(GiTexelSums) a, vec3 x, vec3 n, SST_IN(GiFrame) fx, vec3 xq,
-                                      SST_IN(GiFrame) fq, uint c, vec4 value, bool strict_hemisphere) {
-  vec3 wq = gi_texel_direction(fq, c);
-  vec3 w;
-  float d;
-  if (gi_is_miss(value.w)) {
-    w = wq;
-    d = kGiMissDistance;
-  } else {
-    SST_PRECISE vec3 h = xq + wq * value.w;
-    vec3 hx = h - x;
-    d = length3(hx);
-    if (!(d > 0.0f)) return;
-    w = hx / d;
-  }
-  float cos_n = dot3(n, w);
-  if (strict_hemisphere ? !(cos_n > 0.0f) : !(cos_n >= 0.0f)) return;
-  uint k = gi_texel_of(fx, w);
-  a.sum[k] += vec4(value.x, value.y, value.z, d);
-  a.count[k] += 1.0f;
-}
-
-// The radiance given to texels that received nothing: the mean of the texels rays reached, or, as
-// Capsaicin computes it, that mean spread over the empty texels (divided by their number). Guiding sends no ray to the texels it predicts dark, so the mean brightens them and the
-// spread darkens them: measured in configs/gi10-static-one-bounce.json.
-SST_FUNC vec3 gi_backup(SST_IN(GiTexelSums) a, bool mean) {
-  vec3 sum = vec3(0.0f);
-  vec3 texel_means = vec3(0.0f);
-  float populated = 0.0f;
-  for (uint c = 0u; c < 64u; ++c) {
-    sum += gi_rgb(a.sum[c]);
-    if (a.count[c] > 0.0f) {
-      texel_means += gi_rgb(a.sum[c]) / a.count[c];
-      populated += 1.0f;
-    }
-  }
-  if (!mean) return sum / max(populated, 1.0f) / max(64.0f - populated, 1.0f);
-  return populated > 0.0f ? texel_means / populated : vec3(0.0f);
-}
-
-SST_FUNC vec4 gi_sums_texel(SST_IN(GiTexelSums) a, uint c, vec3 backup) {
-  if (a.count[c] > 0.0f) return a.sum[c] / a.count[c];
-  return gi_vec4(backup, kGiMissDistance);
 }
 
 // ---- S2: reproject the previous frame's probes, one screen tile at a time --------------------------
@@ -161,16 +101,7 @@ SST_FUNC void gi_stage_reproject(GI_CTX_PARAM uint tile) {
 // lists are compacted in tile order (a block scan, so no invocation loops over the whole grid:
 // lavapipe stops any invocation after 65535 loop iterations) and paired by a frame-keyed affine
 // permutation, so the result is the same on every backend and thread count.
-// SPAWN layout: [0, Ns) the spawn list (packed seed or kGiNoProbe); [Ns, 2Ns) override flags;
-// [2Ns, 3Ns) the override list; [3Ns, 3Ns + Nt) empty-tile flags; then the empty list (Nt); then
-// the blocks' counts (override blocks, then empty blocks); then the two list lengths.
-
-SST_FUNC uint gi_override_blocks(SST_IN(Gi10Frame) f) { return (gi_spawns(f) + kGiBlock - 1u) / kGiBlock; }
-SST_FUNC uint gi_empty_blocks(SST_IN(Gi10Frame) f) { return (gi_tiles(f) + kGiBlock - 1u) / kGiBlock; }
-SST_FUNC uint gi_spawn_block_base(SST_IN(Gi10Frame) f) { return 3u * gi_spawns(f) + 2u * gi_tiles(f); }
-SST_FUNC uint gi_spawn_words(SST_IN(Gi10Frame) f) {
-  return gi_spawn_block_base(f) + gi_override_blocks(f) + gi_empty_blocks(f) + 2u;
-}
+// SPAWN's layout: gi10_buffers.h.
 
 SST_FUNC void gi_stage_spawn(GI_CTX_PARAM uint j) {
   uint cur = gi_parity(GF);
@@ -291,12 +222,18 @@ SST_FUNC void gi_stage_patch(GI_CTX_PARAM uint k) {
   GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_PATCHED), 1u);
 }
 
-// ---- S6: reconstruct a new probe from its reprojected neighbours and choose its ray directions ----
+// ---- S6: reconstruct a new probe from its reprojected neighbours (and, with side_cache, the cached
+// probes around it: gi10_side_cache.h) and choose its ray directions ----------------------------
 SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
   uint cur = gi_parity(GF);
   uint packed = GI_SPAWN(j);
+  uint side_probe = gi_side_probes(GF) + 2u * j;
   if (packed == kGiNoProbe) {
     for (uint c = 0u; c < 64u; ++c) GI_RAYS(j * 64u + c).flags = 0u;
+    if (GF.side_slots != 0u) {
+      GI_SPAWN(side_probe) = kGiNoProbe;
+      GI_SPAWN(side_probe + 1u) = kGiNoProbe;
+    }
     return;
   }
   uvec2 seed = gi_unpack(packed);
@@ -306,6 +243,9 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
   int tx = int(seed.x / 8u);
   int ty = int(seed.y / 8u);
   uint mask_base = cur * gi_mask_total(GF);
+  uint own_tile = gi_tile_of(GF, seed);
+  uint own_probe = kGiNoProbe;  // the tile's previous probe, which this one replaces
+  bool own_fed = false;
   GiTexelSums a;
   gi_sums_clear(a);
   for (int dy = -1; dy <= 1; ++dy) {
@@ -316,14 +256,40 @@ SST_FUNC void gi_stage_sample(GI_CTX_PARAM uint j) {
       uint qt = uint(qy) * GF.tiles_x + uint(qx);
       uint q = GI_MASK(mask_base + qt);
       if (q == kGiNoProbe) continue;
+      if (qt == own_tile) own_probe = q;
       Gi10Pixel pq = gi_pixel(GI_CTX cur, gi_pixel_index(GF, gi_unpack(q)));
       if (!(abs(dot3(pq.position - px.position, px.ng)) <= cs)) continue;
       GiFrame fq = gi_frame(pq.ng);
       for (uint c = 0u; c < 64u; ++c)
-        gi_sums_add_reprojected(a, px.position, px.ng, fx, pq.position, fq, c,
-                                GI_RADIANCE(cur * gi_tiles(GF) * 64u + qt * 64u + c), false);
+        if (gi_sums_add_reprojected(a, px.position, px.ng, fx, pq.position, fq, c,
+                                    GI_RADIANCE(cur * gi_tiles(GF) * 64u + qt * 64u + c), false) &&
+            qt == own_tile)
+          own_fed = true;
     }
   }
+  if (GF.side_slots != 0u) {
+    // The previous probe of the tile is evicted when it fed none of this one's texels.
+    bool evicted = own_probe != kGiNoProbe && !own_fed;
+    Gi10Pixel pe = px;
+    float cse = cs;
+    if (evicted) {
+      pe = gi_pixel(GI_CTX cur, gi_pixel_index(GF, gi_unpack(own_probe)));
+      cse = gi_cell_size(GF.view.eye, pe.position, GF.k_probe);
+    }
+    bool fed = false;
+    uvec2 slots = gi_side_reconstruct(GI_CTX a, px, fx, cs, uvec2(uint(tx), uint(ty)), evicted, pe, cse, fed);
+    GI_SPAWN(side_probe) = slots.x;
+    GI_SPAWN(side_probe + 1u) = slots.y;
+    if (slots.x != kGiNoProbe && slots.x != kGiSideAllocate)
+      GI_ATOMIC_MIN(GI_SPAWN(gi_side_claims(GF) + slots.x), gi_side_key(1u, j));
+    if (slots.y != kGiNoProbe) GI_ATOMIC_MIN(GI_SPAWN(gi_side_claims(GF) + slots.y), gi_side_key(2u, j));
+    if (evicted) GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_SIDE_EVICTED), 1u);
+    if (fed) GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_SIDE_USED), 1u);
+  }
+  bool history = false;
+  for (uint c = 0u; c < 64u; ++c)
+    if (a.count[c] > 0.0f) history = true;
+  if (!history) GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_NO_HISTORY), 1u);
   // The guiding distribution: reconstructed luminance times the cosine at each texel's centre.
   // texel_estimate expected mixes in a uniform floor (kGiGuideFloor of the mean weight), so every
   // texel keeps a chance: a texel guiding can never reach would keep a dark estimate for ever.
@@ -394,6 +360,7 @@ SST_FUNC void gi_stage_blend(GI_CTX_PARAM uint j) {
   uint cur = gi_parity(GF);
   uvec2 seed = gi_unpack(packed);
   uint tile = gi_tile_of(GF, seed);
+  if (GF.side_slots != 0u) gi_side_store_evicted(GI_CTX j, tile, GI_MASK(cur * gi_mask_total(GF) + tile));
   GiTexelSums a;
   gi_sums_clear(a);
   for (uint c = 0u; c < 64u; ++c) {
@@ -423,6 +390,7 @@ SST_FUNC void gi_stage_blend(GI_CTX_PARAM uint j) {
     GI_RADIANCE(cur * gi_tiles(GF) * 64u + tile * 64u + c) = value;
   }
   GI_MASK(cur * gi_mask_total(GF) + tile) = packed;
+  if (GF.side_slots != 0u) gi_side_store_updated(GI_CTX j, tile, gi_pixel(GI_CTX cur, gi_pixel_index(GF, seed)));
 }
 
 // ---- S16: the probe mask's mips: the first valid child of four, so a coarse entry names a probe ---

@@ -9,7 +9,8 @@
 SST_BEGIN
 
 // Element `index` of stage `stage` (GI10_STAGE_*): the one entry both backends call. `pass`: the
-// mask level of MASK_MIP, the direction of FILTER and FILTER_GI.
+// mask level of MASK_MIP, the direction of FILTER and FILTER_GI, the step of SIDE_LOOKUP and
+// SIDE_REORDER.
 SST_FUNC void gi10_stage(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint stage, uint pass, uint index) {
   uint cur = gi_parity(GF);
   if (stage == GI10_STAGE_GBUFFER) gi_stage_gbuffer(SCENE_CTX RAY_CTX GI_CTX index);
@@ -37,6 +38,9 @@ SST_FUNC void gi10_stage(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PA
   else if (stage == GI10_STAGE_BLUR_MASK) gi_stage_blur_mask(GI_CTX index);
   else if (stage == GI10_STAGE_FILTER_GI) gi_stage_filter_gi(GI_CTX pass, index);
   else if (stage == GI10_STAGE_FEEDBACK) gi_stage_feedback_image(GI_CTX index);
+  else if (stage == GI10_STAGE_SIDE_LOOKUP) gi_stage_side_lookup(GI_CTX pass, index);
+  else if (stage == GI10_STAGE_SIDE_ALLOCATE) gi_stage_side_allocate(GI_CTX index);
+  else if (stage == GI10_STAGE_SIDE_REORDER) gi_stage_side_reorder(GI_CTX pass, index);
 }
 
 SST_END

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // rayquery build (gpu/CMakeLists.txt)
-// variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24
+// variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27
 // GI-1.0 on the GPU: the stages of core/gi10/gi10_stages.h, one invocation per element, as the
 // CPU's loops run them. Compiled once per stage (gi10_<GI10_STAGE_*>, gpu/CMakeLists.txt): in one
 // pipeline for all, llvmpipe paid every stage's local arrays in each invocation (7 us each).

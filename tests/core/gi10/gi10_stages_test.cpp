@@ -1,5 +1,6 @@
 // Single stages of gi10_stages.h on the CPU (docs/design/gi10.md, tests): the hash grid's
-// invariants under forced collisions (T7) and the guiding's ray counts against its weights (T4).
+// invariants under forced collisions (T7), the guiding's ray counts against its weights (T4), and
+// the side cache's lists, slot allocation and LRU order.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -223,6 +224,94 @@ TEST(Gi10Guiding, ExpectedTexelsAreUnbiasedWhereTheFillIsNot) {
   std::printf("expected texels: worst z %.2f; fill: dim texels %.2f x their radiance\n", worst_z, fill_dim);
   EXPECT_LT(worst_z, 4.5);  // 64 texels: 4.5 standard deviations is a 4e-4 chance by noise
   EXPECT_GT(fill_dim, 1.5);
+}
+
+// The side cache's bookkeeping on a grid of tx x ty screen tiles (as many slots) and 2 x 2
+// spawned probes; every word of SPAWN's side cache starts at "none".
+struct SideCache {
+  glsl::Gi10Frame frame{};
+  std::vector<uint32_t> spawn, counters = std::vector<uint32_t>(GI10_COUNTERS, 0u);
+  std::vector<vec4> radiance;
+  Gi10Buffers b;
+  SideCache(uint32_t tx, uint32_t ty) {
+    frame.tiles_x = tx;
+    frame.tiles_y = ty;
+    frame.spawn_x = 2;
+    frame.spawn_y = 2;
+    frame.side_slots = tx * ty;
+    frame.frame = 1;
+    spawn.assign(gi_side_block_counts(frame) + 2 * gi_side_blocks(frame), kGiNoProbe);
+    radiance.assign(gi_side_normals(frame) + frame.side_slots, vec4(0.0f));
+    b.frame = &frame;
+    b.spawn = spawn.data();
+    b.radiance = radiance.data();
+    b.counters = counters.data();
+  }
+  uint32_t& order(uint32_t parity, uint32_t i) { return spawn[gi_side_order(frame, parity) + i]; }
+  uint32_t& claim(uint32_t slot) { return spawn[gi_side_claims(frame) + slot]; }
+};
+
+TEST(Gi10SideCache, ATileListsItsLowestSlotsInOrderWhateverTheOrderOfTheirInvocations) {
+  SideCache sc(4, 3);
+  const uint32_t tile5[] = {11, 3, 7, 1, 9, 4};  // six slots project into tile 5, one into tile 0
+  for (uint32_t slot : tile5) sc.spawn[gi_side_slot_tiles(sc.frame) + slot] = 5;
+  sc.spawn[gi_side_slot_tiles(sc.frame) + 2] = 0;
+  std::mt19937 rng(7);
+  std::vector<uint32_t> slots(12);
+  for (uint32_t i = 0; i < 12; ++i) slots[i] = i;
+  for (uint32_t pass = 1; pass <= kGiSideListLength; ++pass) {
+    std::shuffle(slots.begin(), slots.end(), rng);
+    for (uint32_t i : slots) gi_stage_side_lookup(sc.b, pass, i);
+  }
+  const uint32_t* list5 = &sc.spawn[gi_side_lists(sc.frame) + 5 * kGiSideListLength];
+  const uint32_t* list0 = &sc.spawn[gi_side_lists(sc.frame)];
+  EXPECT_EQ(std::vector<uint32_t>(list5, list5 + 4), (std::vector<uint32_t>{1, 3, 4, 7}));
+  EXPECT_EQ(std::vector<uint32_t>(list0, list0 + 4), (std::vector<uint32_t>{2, kGiNoProbe, kGiNoProbe, kGiNoProbe}));
+}
+
+TEST(Gi10SideCache, EvictedProbesTakeTheLeastRecentlyUsedSlotsAndTheirClaimsWin) {
+  SideCache sc(4, 3);
+  const uint32_t lru[] = {5, 9, 2, 0, 1, 3, 4, 6, 7, 8, 10, 11};
+  for (uint32_t i = 0; i < 12; ++i) sc.order(1, i) = lru[i];  // frame 1: parity 1
+  const uint32_t probes = gi_side_probes(sc.frame);
+  sc.spawn[probes + 0] = kGiSideAllocate;  // probe 0 evicted a probe no slot matched
+  sc.spawn[probes + 4] = kGiSideAllocate;  // probe 2 too
+  sc.spawn[probes + 6] = 5;                // probe 3's evicted probe matched slot 5 ...
+  sc.claim(5) = gi_side_key(1u, 3);
+  sc.spawn[probes + 3] = 9;                // ... and probe 1's radiance updates slot 9
+  sc.claim(9) = gi_side_key(2u, 1);
+  gi_stage_side_allocate(sc.b, 0);
+  EXPECT_EQ(sc.spawn[probes + 0], 5u);
+  EXPECT_EQ(sc.spawn[probes + 4], 9u);
+  EXPECT_EQ(sc.claim(5), gi_side_key(0u, 0));  // a taken slot beats the match and the update
+  EXPECT_EQ(sc.claim(9), gi_side_key(0u, 2));
+  EXPECT_EQ(sc.counters[GI10_COUNT_SIDE_ALLOCATED], 2u);
+}
+
+TEST(Gi10SideCache, TheReorderMovesTheWrittenSlotsBackAndKeepsEveryOtherOrder) {
+  SideCache sc(30, 20);  // 600 slots: three blocks of the reorder's scan
+  const uint32_t n = sc.frame.side_slots;
+  std::vector<uint32_t> order(n);
+  for (uint32_t i = 0; i < n; ++i) order[i] = i;
+  std::mt19937 rng(3);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<uint32_t> unused, used;
+  for (uint32_t i = 0; i < n; ++i) {
+    sc.order(1, i) = order[i];
+    bool written = rng() % 7 == 0;
+    if (written) sc.claim(order[i]) = gi_side_key(2u, i);
+    (written ? used : unused).push_back(order[i]);
+  }
+  ASSERT_GT(used.size(), 20u);
+  const uint32_t blocks = gi_side_blocks(sc.frame);
+  for (uint32_t b = 0; b < blocks; ++b) gi_stage_side_reorder(sc.b, 0, b);
+  gi_stage_side_reorder(sc.b, 1, 0);
+  for (uint32_t b = blocks; b-- > 0;) gi_stage_side_reorder(sc.b, 2, b);
+  std::vector<uint32_t> expected = unused;
+  expected.insert(expected.end(), used.begin(), used.end());
+  std::vector<uint32_t> next(n);
+  for (uint32_t i = 0; i < n; ++i) next[i] = sc.order(0, i);
+  EXPECT_EQ(next, expected);
 }
 
 }  // namespace

@@ -81,7 +81,9 @@ using glm::vec4;
 #define GI10_COUNT_SIDE_EVICTED 16u   // side_cache: spawned probes that evicted the previous probe of their tile
 #define GI10_COUNT_SIDE_ALLOCATED 17u  // side_cache: slots taken from the front of the LRU order
 #define GI10_COUNT_SIDE_USED 18u      // side_cache: spawned probes whose reconstruction a cached probe fed
-#define GI10_COUNTERS 20u
+#define GI10_COUNT_RELAXED 19u        // pixels whose irradiance came from probes off their surface (hint 0)
+#define GI10_COUNT_NO_PROBE 20u       // surface pixels that found no probe at all (irradiance 0)
+#define GI10_COUNTERS 24u
 
 // Everything the stages read that is not a buffer. The host fills it once per frame.
 struct Gi10Frame {

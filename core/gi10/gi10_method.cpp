@@ -484,6 +484,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   executor.read_irradiance(denoised, raw);
   const std::vector<vec4>& e = params_.irradiance_denoiser ? denoised : raw;
   Image raw_image(context.width, context.height), e_image(context.width, context.height);
+  Image hint_image(context.width, context.height);
   std::vector<vec4> feedback(sizes_.pixels());
   tbb::parallel_for(0, context.height, [&](int y) {
     for (int x = 0; x < context.width; ++x) {
@@ -499,6 +500,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
       out.color.set_rgb(x, y, color);
       e_image.set_rgb(x, y, irradiance);
       raw_image.set_rgb(x, y, clean(raw[i]));
+      hint_image.set_rgb(x, y, vec3(raw[i].w > 0.0f ? 1.0f : 0.0f));
       feedback[i] = vec4(color, 0.0f);
     }
   });
@@ -530,6 +532,8 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
                              {"side_evicted", c[GI10_COUNT_SIDE_EVICTED]},
                              {"side_allocated", c[GI10_COUNT_SIDE_ALLOCATED]},
                              {"side_used", c[GI10_COUNT_SIDE_USED]},
+                             {"relaxed_pixels", c[GI10_COUNT_RELAXED]},
+                             {"pixels_without_probe", c[GI10_COUNT_NO_PROBE]},
                              {"emissive_rays", c[GI10_COUNT_EMISSIVE]},
                              {"probe_rays_per_pixel", double(c[GI10_COUNT_PROBES]) * 64.0 / pixels},
                              {"cache_shadow_rays_per_pixel", double(c[GI10_COUNT_SHADOW_RAYS]) / pixels},
@@ -541,7 +545,7 @@ FrameOutput Gi10Renderer::render_one(const RenderContext& context, Gi10Executor&
   out.method_counters["buckets_ms"] = buckets;
   out.counters.bounce_rays += uint64_t(c[GI10_COUNT_PROBES]) * 64;
   out.counters.shadow_rays += c[GI10_COUNT_SHADOW_RAYS];
-  out.extra_layers = {{"gi10_irradiance", e_image}, {"gi10_irradiance_raw", raw_image}};
+  out.extra_layers = {{"gi10_irradiance", e_image}, {"gi10_irradiance_raw", raw_image}, {"gi10_probe_hint", hint_image}};
   return out;
 }
 

@@ -70,6 +70,7 @@ SST_FUNC void gi_stage_interpolate(GI_CTX_PARAM uint index) {
       // With no probe on the pixel's surface, every found probe counts alike ("relaxed"), and the
       // denoiser is told not to trust the sample (hint 0).
       float hint = wsum > 0.0f ? 1.0f : 0.0f;
+      if (!(wsum > 0.0f)) GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_RELAXED), 1u);
       SST_PRECISE vec3 e = vec3(0.0f);
       for (uint i = 0u; i < 4u; ++i) {
         if (w[i] < 0.0f) continue;
@@ -79,6 +80,8 @@ SST_FUNC void gi_stage_interpolate(GI_CTX_PARAM uint index) {
         }
       }
       out_value = gi_vec4(e, hint);
+    } else {
+      GI_ATOMIC_ADD(GI_COUNTERS(GI10_COUNT_NO_PROBE), 1u);
     }
   }
   GI_DENOISE(index) = out_value;

@@ -78,7 +78,7 @@ TEST(Gi10Vulkan, AfterWarmUpEqualsTheCpu) {
     EXPECT_LT(rel, 1e-6);
     EXPECT_LT(color, 1e-6);
     for (const char* k : {"probe_hits", "feedback_rays", "cache_shadow_rays", "live_tiles", "patched_probes",
-                          "reservoirs_reused"})
+                          "reservoirs_reused", "relaxed_pixels"})
       EXPECT_EQ(gpu.frame.method_counters[k], cpu.frame.method_counters[k]) << k;
   }
 }

@@ -28,14 +28,20 @@ Scene lit_sphere(float albedo, float radius, float intensity) {
   return s;
 }
 
-RenderResult render_gi10(const Scene& scene, const nlohmann::json& params, int width, int height, int threads = 2) {
+// One sample per pixel, diffuse-only: the options of every test here.
+RenderOptions gi10_options(int width, int height) {
   RenderOptions o;
   o.method = "gi10";
   o.width = width;
   o.height = height;
   o.spp = 1;
-  o.threads = threads;
   o.diffuse_only = true;
+  return o;
+}
+
+RenderResult render_gi10(const Scene& scene, const nlohmann::json& params, int width, int height, int threads = 2) {
+  RenderOptions o = gi10_options(width, height);
+  o.threads = threads;
   return render_frame(scene, o, params);
 }
 
@@ -135,12 +141,7 @@ TEST(Gi10Method, GivesTheSameBitsWithOneThreadAndTwo) {
 // frames renders the fourth frame with the bits of the method it came from.
 TEST(Gi10Method, ASavedStateGoesOnAsTheRunItCameFrom) {
   Scene scene = load_default_scene();
-  RenderOptions o;
-  o.method = "gi10";
-  o.width = 48;
-  o.height = 36;
-  o.spp = 1;
-  o.diffuse_only = true;
+  const RenderOptions o = gi10_options(48, 36);
   EmbreeAccel accel(scene);
   LightSampler lights(scene);
   PinholeCamera camera(scene.cameras.at(0), o.width, o.height);
@@ -174,20 +175,16 @@ TEST(Gi10Method, WorldRestirKeepsTheOneBounceMean) {
   auto mean_indirect = [&](bool world_restir) {
     double s = 0.0;
     for (int seed = 0; seed < 3; ++seed) {
-      RenderOptions o;
-      o.method = "gi10";
-      o.width = 96;
-      o.height = 72;
-      o.spp = 1;
+      RenderOptions o = gi10_options(96, 72);
       o.threads = 2;
-      o.diffuse_only = true;
       o.seed = seed;
       RenderResult r = render_frame(scene, o, {{"feedback", false}, {"cache_warmup_frames", 32}, {"world_restir", world_restir}});
       for (float v : r.frame.indirect.data) s += v;
       // Most cache points find a reservoir of the previous frame in their tile.
-      if (world_restir)
+      if (world_restir) {
         EXPECT_GT(r.frame.method_counters["reservoirs_reused"].get<double>(),
                   0.3 * r.frame.method_counters["probe_hits"].get<double>());
+      }
     }
     return s;
   };
@@ -220,13 +217,10 @@ TEST(Gi10Method, CachePathsCarryEveryBounce) {
   // a 1024-spp path tracer, seeds 0-2: 0.989-0.998).
   Scene scene = load_default_scene();
   auto mean_indirect = [&](const std::string& method, int spp, const nlohmann::json& params) {
-    RenderOptions o;
+    RenderOptions o = gi10_options(96, 72);
     o.method = method;
-    o.width = 96;
-    o.height = 72;
     o.spp = spp;
     o.threads = 2;
-    o.diffuse_only = true;
     RenderResult r = render_frame(scene, o, params);
     double s = 0.0;
     for (float v : r.frame.indirect.data) s += v;
@@ -250,12 +244,7 @@ TEST(Gi10Method, TheSideCacheKeepsTheHistoryOfProbesOnThinGeometry) {
   const Scene scene = test::thin_slats(5, 0.15f, 1.6f);
   EmbreeAccel accel(scene);
   LightSampler lights(scene);
-  RenderOptions o;
-  o.method = "gi10";
-  o.width = 128;
-  o.height = 96;
-  o.spp = 1;
-  o.diffuse_only = true;
+  const RenderOptions o = gi10_options(128, 96);
   PinholeCamera camera(scene.cameras.at(0), o.width, o.height);
   struct Run {
     std::map<std::string, double> counts;
@@ -287,6 +276,33 @@ TEST(Gi10Method, TheSideCacheKeepsTheHistoryOfProbesOnThinGeometry) {
   EXPECT_LT(on.counts["probes_without_history"], 0.5 * off.counts["probes_without_history"]);
   EXPECT_EQ(on.last, on_one.last);
   EXPECT_NE(on.last, off.last);
+}
+
+// gi10_probe_hint is 1 exactly where a probe on the pixel's own surface gave its irradiance: on
+// every pixel but those the counters say fell back on probes off their surface or found none.
+// The slats (15 cm, two pixels here) hold few probes of their own; a ceiling closes the view.
+TEST(Gi10Method, TheProbeHintLayerMarksThePixelsThatFellBack) {
+  Scene scene = test::thin_slats(5, 0.15f, 1.6f);
+  const uint32_t base = uint32_t(scene.positions.size());
+  for (vec3 p : {vec3(-4, 3, 3), vec3(-4, 3, -3), vec3(4, 3, -3), vec3(4, 3, 3)}) {
+    scene.positions.push_back(p);
+    scene.normals.push_back(vec3(0, -1, 0));
+    scene.uvs.push_back(vec2(0.0f));
+  }
+  scene.triangles.push_back({base, base + 1, base + 2});
+  scene.triangles.push_back({base, base + 2, base + 3});
+  scene.triangle_material.insert(scene.triangle_material.end(), 2, 0u);
+  scene.finalize_bounds();
+  RenderResult r = render_gi10(scene, {{"cache_warmup_frames", 4}}, 96, 72);
+  const Image& hint = layer(r, "gi10_probe_hint");
+  double hinted = 0.0;
+  for (int y = 0; y < hint.height; ++y)
+    for (int x = 0; x < hint.width; ++x) hinted += hint.rgb(x, y).x;
+  const double relaxed = r.frame.method_counters["relaxed_pixels"].get<double>();
+  const double none = r.frame.method_counters["pixels_without_probe"].get<double>();
+  std::printf("pixels %d, hinted %g, relaxed %g, without probe %g\n", hint.width * hint.height, hinted, relaxed, none);
+  EXPECT_GT(relaxed, 0.0);
+  EXPECT_EQ(hinted, double(hint.width * hint.height) - relaxed - none);
 }
 
 TEST(Gi10Method, RefusesAnUnknownPresetNamingIt) {

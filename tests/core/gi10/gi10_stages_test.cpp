@@ -11,6 +11,7 @@
 #include <set>
 
 #include "core/gi10/gi10_cpu.h"
+#include "core/gi10/gi10_method.h"
 
 namespace sst {
 namespace {
@@ -250,6 +251,26 @@ struct SideCache {
   uint32_t& order(uint32_t parity, uint32_t i) { return spawn[gi_side_order(frame, parity) + i]; }
   uint32_t& claim(uint32_t slot) { return spawn[gi_side_claims(frame) + slot]; }
 };
+
+// The host sizes SPAWN and RADIANCE (Gi10Sizes) by its own arithmetic; the stages index them by
+// gi10_buffers.h's. Both must agree, with the side cache and without, at 1080p.
+TEST(Gi10SideCache, TheHostSizesTheBuffersAsTheStagesIndexThem) {
+  for (const char* side_cache : {"on", "off"}) {
+    Gi10Params p;
+    p.side_cache = side_cache;
+    const Gi10Sizes s = gi10_sizes(1920, 1080, p);
+    glsl::Gi10Frame f{};
+    f.tiles_x = s.tiles_x;
+    f.tiles_y = s.tiles_y;
+    f.spawn_x = s.spawn_x;
+    f.spawn_y = s.spawn_y;
+    f.side_slots = s.side_slots;
+    EXPECT_EQ(s.side_slots, std::string(side_cache) == "on" ? s.tiles() : 0u);
+    const uint64_t spawn = f.side_slots > 0 ? gi_side_block_counts(f) + 2 * gi_side_blocks(f) : gi_spawn_words(f);
+    EXPECT_EQ(s.spawn_words(), spawn) << side_cache;
+    EXPECT_EQ(s.radiance_entries(), uint64_t(gi_side_normals(f)) + f.side_slots) << side_cache;
+  }
+}
 
 TEST(Gi10SideCache, ATileListsItsLowestSlotsInOrderWhateverTheOrderOfTheirInvocations) {
   SideCache sc(4, 3);

@@ -265,12 +265,13 @@ Scene light_field(uint32_t seed, int quads, int points, int spots) {
   return s;
 }
 
-Scene thin_slats(int slats, float width, float spacing) {
+Scene thin_slats(int slats, float width, float spacing, bool ceiling) {
   Scene s;
   s.source = "generated:thin_slats";
   s.materials.push_back(diffuse_material("diffuse", 0.6f, 0.0f));
   add_quad(s, {-4, 0, 3}, {4, 0, 3}, {4, 0, -3}, {-4, 0, -3}, 0);
   add_quad(s, {-4, 0, -2.5f}, {4, 0, -2.5f}, {4, 3, -2.5f}, {-4, 3, -2.5f}, 0);
+  if (ceiling) add_quad(s, {-4, 3, 3}, {-4, 3, -3}, {4, 3, -3}, {4, 3, 3}, 0);
   const float h = 0.5f * width;
   for (int i = 0; i < slats; ++i) {
     float x = spacing * (float(i) - 0.5f * float(slats - 1));

@@ -48,7 +48,8 @@ Scene light_field(uint32_t seed, int quads, int points, int spots);
 // (z = -2.5, 3 m high) and `slats` vertical double-sided slats (`width` wide, 2.5 m high) 1 m in
 // front of it, `spacing` apart and centred on x = 0, all diffuse (albedo 0.6), lit by a point light
 // at (0, 2.5, 0.5); a camera at (0, 1.2, 2.5) looking down -z (field of view 1 rad, aspect 4/3).
-Scene thin_slats(int slats, float width, float spacing);
+// With `ceiling`, a ceiling at y = 3 closes the view: every pixel sees a surface.
+Scene thin_slats(int slats, float width, float spacing, bool ceiling = false);
 
 // Scales every position, light and camera of a scene by s (scene-scale tests).
 void scale_scene(Scene& scene, float s);

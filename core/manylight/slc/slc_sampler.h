@@ -47,12 +47,12 @@ inline ChildWeights slc_weights(const ShadingPoint& point, float floor_fraction 
 }
 inline bool stop_at_leaves(const LightNode& node) { return node.is_leaf(); }
 
-// Builds the frame's tree in prepare: stage "tree_build", counters["tree"] = kind and stats.
 // slc's parameters: the tree methods' (TreeMethodParams), with its own floor threshold.
 struct SlcParams : TreeMethodParams {
   SlcParams() : TreeMethodParams(kNodeFloorAboveForWalks) {}
 };
 
+// Builds the frame's tree in prepare: stage "tree_build", counters["tree"] = kind and stats.
 class SlcSampler final : public TreeSamplerBase {
  public:
   explicit SlcSampler(LightTreeParams params) : TreeSamplerBase(std::move(params)) {}

@@ -282,18 +282,7 @@ TEST(Gi10Method, TheSideCacheKeepsTheHistoryOfProbesOnThinGeometry) {
 // every pixel but those the counters say fell back on probes off their surface or found none.
 // The slats (15 cm, two pixels here) hold few probes of their own; a ceiling closes the view.
 TEST(Gi10Method, TheProbeHintLayerMarksThePixelsThatFellBack) {
-  Scene scene = test::thin_slats(5, 0.15f, 1.6f);
-  const uint32_t base = uint32_t(scene.positions.size());
-  for (vec3 p : {vec3(-4, 3, 3), vec3(-4, 3, -3), vec3(4, 3, -3), vec3(4, 3, 3)}) {
-    scene.positions.push_back(p);
-    scene.normals.push_back(vec3(0, -1, 0));
-    scene.uvs.push_back(vec2(0.0f));
-  }
-  scene.triangles.push_back({base, base + 1, base + 2});
-  scene.triangles.push_back({base, base + 2, base + 3});
-  scene.triangle_material.insert(scene.triangle_material.end(), 2, 0u);
-  scene.finalize_bounds();
-  RenderResult r = render_gi10(scene, {{"cache_warmup_frames", 4}}, 96, 72);
+  RenderResult r = render_gi10(test::thin_slats(5, 0.15f, 1.6f, true), {{"cache_warmup_frames", 4}}, 96, 72);
   const Image& hint = layer(r, "gi10_probe_hint");
   double hinted = 0.0;
   for (int y = 0; y < hint.height; ++y)

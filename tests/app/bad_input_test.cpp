@@ -117,6 +117,23 @@ TEST(BadInput, GltfExtrasNestedDeepIsRefused) {
   EXPECT_EQ(test::load_error(b.write(dir, "ok")), "");
 }
 
+// The loader's animation errors (tests/core/scene/animation_test.cpp) reach the command line as
+// one line naming the file.
+TEST(BadInput, AnAnimationErrorIsOneLineOfTheProgram) {
+  auto dir = test::temp_dir();
+  GltfBuilder b;
+  b.scene({b.node({{"mesh", b.triangle_mesh()}})});
+  std::vector<float> times = {0, 1}, values = {0, 0, 0, 1, 0, 0};
+  int input = b.accessor(b.view(times), test::kFloat, times.size(), "SCALAR");
+  int output = b.accessor(b.view(values), test::kFloat, 2, "VEC3");
+  b.doc["animations"] = json::array({{{"name", "anim0"},
+                                      {"samplers", {{{"input", input}, {"output", output}, {"interpolation", "QUADRATIC"}}}},
+                                      {"channels", {{{"sampler", 0}, {"target", {{"node", 0}, {"path", "translation"}}}}}}}});
+  fs::path path = b.write(dir, "bad");
+  expect_error(render(path.string() + " -q -o " + (dir / "out.exr").string()),
+               path.string() + ": animation 0 ('anim0') channel 0 sampler 0 has unknown interpolation");
+}
+
 TEST(BadInput, ConfigNestedDeepIsRefused) {
   auto dir = test::temp_dir();
   for (std::string where : {"axes", "reference", "nonsense"}) {

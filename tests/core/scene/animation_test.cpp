@@ -426,18 +426,6 @@ TEST_F(AnimationErrors, WrongInputType) {
   expect_error("channel 0 sampler 0 input (accessor " + std::to_string(input) + ") has 3 components per element (needs 1)");
 }
 
-TEST_F(AnimationErrors, ReachTheCommandLineAsOneErrorLine) {
-  sampler()["interpolation"] = "QUADRATIC";
-  fs::path dir = test::temp_dir();
-  fs::path path = b.write(dir, "bad");
-  test::CommandResult r = test::run_command(std::string(SST_RENDER_EXE) + " " + path.string() + " -o " +
-                                            (dir / "out.exr").string());
-  EXPECT_NE(r.exit_code, 0);
-  std::string line = "error: " + path.string() + ": animation 0 ('anim0') channel 0 sampler 0 has unknown interpolation";
-  EXPECT_NE(r.output.find(line), std::string::npos) << r.output;
-  EXPECT_EQ(r.output.find("error: "), r.output.rfind("error: ")) << "one error line: " << r.output;
-}
-
 // ---- the scene that ships ----
 
 TEST(SceneAnimation, ShippedAnimatedBoxMovesItsBoxAndCamera) {

@@ -18,6 +18,9 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
       cpu_builder_.build(lighting.vpls, tree_params_, &lengths, tree_, &stats);
   });
   const float node_floor = node_distance_floor_for(tree_params_, tree_.vpl_bounds, lengths.view);
+  // What node_distance_floor_above is compared with, so that a record shows how near the threshold a scene is.
+  const float vpl_view_lengths =
+      tree_.vpl_bounds.empty() || !(lengths.view > 0.0f) ? 0.0f : tree_.vpl_bounds.diagonal() / lengths.view;
   counters["tree"] = {{"kind", tree_.kind},
                       {"built_on", built_on},
                       {"nodes", tree_.node_count()},
@@ -25,6 +28,7 @@ void TreeSamplerBase::build(const VplLighting& lighting, StageTimer& timer, nloh
                       {"suitable_internal", count_suitable_internal(tree_)},
                       {"length_scale", tree_.length_scale},
                       {"node_distance_floor", node_floor},
+                      {"vpl_view_lengths", vpl_view_lengths},
                       {"bounds_ms", stats.bounds_ms},
                       {"keys_ms", stats.keys_ms},
                       {"sort_ms", stats.sort_ms},

@@ -113,6 +113,15 @@ std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_map
   return maps;
 }
 
+uint32_t brsm_auto_resolution(const std::vector<BrsmMap>& maps, float texels_per_vpl) {
+  uint32_t most = 0;
+  for (const BrsmMap& m : maps) most = std::max(most, m.vpl_count);
+  const double texels = double(texels_per_vpl) * double(most);
+  uint32_t side = 16;
+  while (side < 4096 && double(side) * double(side) < texels) side *= 2;
+  return side;
+}
+
 BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplParams& params, const ViewParams& view,
                    uint32_t seed, bool diffuse_only, const EmissionFocus& focus, VplStats& stats) {
   validate(params);
@@ -123,7 +132,10 @@ BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplPara
   s.focus_center = focus.center;
   s.focus_radius = focus.radius;
   s.seed = seed;
-  s.resolution = uint32_t(params.brsm_resolution);
+  std::vector<BrsmMap> maps = brsm_maps(lights, params.vpls, params.brsm_maps);
+  s.resolution = params.brsm_resolution > 0 ? uint32_t(params.brsm_resolution)
+                                            : brsm_auto_resolution(maps, params.brsm_texels_per_vpl);
+  stats.resolution = s.resolution;
   s.gbuffer_width = std::max(1u, uint32_t(std::lround(double(view.width) * params.brsm_gbuffer_scale)));
   s.gbuffer_height = std::max(1u, uint32_t(std::lround(double(view.height) * params.brsm_gbuffer_scale)));
   s.gbuffer_samples = uint32_t(params.brsm_gbuffer_samples);
@@ -133,7 +145,7 @@ BrsmPlan brsm_plan(const Scene& scene, const PackedLights& lights, const VplPara
   s.edge_filter = params.brsm_filter ? 1u : 0u;
   s.diffuse_only = diffuse_only ? 1u : 0u;
   s.ray_epsilon = scene_ray_epsilon(scene);
-  return {brsm_maps(lights, params.vpls, params.brsm_maps), s};
+  return {std::move(maps), s};
 }
 
 const char* brsm_stage_name(uint32_t stage) {

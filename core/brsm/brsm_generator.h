@@ -26,6 +26,10 @@ namespace sst {
 // `vpls`. Empty when no light emits.
 std::vector<BrsmMap> brsm_maps(const PackedLights& lights, int vpls, int max_maps);
 
+// The side of the maps when brsm_resolution is 0: the smallest power of two, within 16..4096, whose
+// square holds `texels_per_vpl` texels for each VPL of the map that draws the most.
+uint32_t brsm_auto_resolution(const std::vector<BrsmMap>& maps, float texels_per_vpl);
+
 // What a frame's set is drawn from, for both backends: its maps and the settings every stage reads.
 struct BrsmPlan {
   std::vector<BrsmMap> maps;

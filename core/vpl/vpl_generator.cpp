@@ -159,8 +159,12 @@ void validate(const VplParams& p) {
     throw Error("focus_bounces must be in [0, 1) (got " + std::to_string(p.focus_bounces) + ")");
   if (p.vpl_source != "paths" && p.vpl_source != "brsm")
     throw Error("vpl_source must be paths or brsm (got '" + p.vpl_source + "')");
-  if (p.brsm_resolution < 2 || p.brsm_resolution > 4096 || (p.brsm_resolution & (p.brsm_resolution - 1)) != 0)
-    throw Error("brsm_resolution must be a power of two in 2..4096 (got " + std::to_string(p.brsm_resolution) + ")");
+  if (p.brsm_resolution != 0 &&
+      (p.brsm_resolution < 2 || p.brsm_resolution > 4096 || (p.brsm_resolution & (p.brsm_resolution - 1)) != 0))
+    throw Error("brsm_resolution must be 0 or a power of two in 2..4096 (got " + std::to_string(p.brsm_resolution) +
+                ")");
+  if (!(p.brsm_texels_per_vpl > 0.0f && p.brsm_texels_per_vpl <= 1e6f))
+    throw Error("brsm_texels_per_vpl must be in (0, 1e6] (got " + std::to_string(p.brsm_texels_per_vpl) + ")");
   if (p.brsm_maps < 1 || p.brsm_maps > 4096)
     throw Error("brsm_maps must be in 1..4096 (got " + std::to_string(p.brsm_maps) + ")");
   if (!(p.brsm_gbuffer_scale > 0.0f && p.brsm_gbuffer_scale <= 1.0f))
@@ -210,6 +214,7 @@ nlohmann::json to_json(const VplStats& s) {
     nlohmann::json stages = nlohmann::json::object();
     for (const auto& [name, ms] : s.stage_ms) stages[name] = ms;
     j["maps"] = s.maps;
+    j["resolution"] = s.resolution;
     j["pvpls"] = s.pvpls;
     j["stage_ms"] = stages;
   }

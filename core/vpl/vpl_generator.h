@@ -49,6 +49,7 @@ struct VplParams {
   float directional_focus = 2.0f;
   float focus_bounces = 0.5f;
   int brsm_resolution = 256;
+  float brsm_texels_per_vpl = 1.0f;
   int brsm_maps = 8;
   float brsm_gbuffer_scale = 0.25f;
   int brsm_gbuffer_samples = 8;
@@ -89,7 +90,12 @@ struct VplParams {
       "cosine-weighted (unbiased; in [0, 1); 0: every bounce cosine-weighted, as before), so that the light of far "
       "ground reaches the view by many paths rather than a few heavy ones; needs directional_focus > 0");
     v("brsm_resolution", brsm_resolution,
-      "brsm: texels per side of each map (a power of two, 2..4096): one light ray and one potential VPL per texel");
+      "brsm: texels per side of each map (a power of two, 2..4096; 0: from the VPL count, brsm_texels_per_vpl): one "
+      "light ray and one potential VPL per texel");
+    v("brsm_texels_per_vpl", brsm_texels_per_vpl,
+      "brsm with brsm_resolution 0: the maps' side is the smallest power of two (16..4096) whose texels number at "
+      "least this many per VPL of the map that draws the most (with 4096 VPLs on two CPU cores, maps of 1-4 texels per "
+      "VPL had the lowest error at equal time: results/README.md, 'Map size at equal time')");
     v("brsm_maps", brsm_maps,
       "brsm: the most maps; with more lights, consecutive lights of the power distribution share a map (each map "
       "holds about the same power, and its VPL count is in proportion to the power it holds)");
@@ -129,6 +135,7 @@ struct VplStats {
   uint64_t paths = 0;          // P: paths the set represents (intensities are divided by it); brsm: texels
   uint64_t pvpls = 0;          // brsm: texels with a potential VPL
   uint64_t maps = 0;           // brsm: maps
+  uint32_t resolution = 0;     // brsm: texels per side of each map
   uint64_t paths_traced = 0;   // including paths traced past the last one used
   uint64_t vpls = 0;           // deposited (== the set's size)
   uint64_t rays = 0;           // closest-hit rays of all traced paths

@@ -214,6 +214,11 @@ TEST(BrsmParamsCheck, BadValuesNameTheParameter) {
   p.brsm_resolution = 100;
   EXPECT_NE(message(p).find("brsm_resolution"), std::string::npos);
   p = VplParams{};
+  p.brsm_resolution = 0;
+  EXPECT_EQ(message(p), "no error") << "0: from the VPL count";
+  p.brsm_texels_per_vpl = 0.0f;
+  EXPECT_NE(message(p).find("brsm_texels_per_vpl"), std::string::npos);
+  p = VplParams{};
   p.brsm_gbuffer_scale = 0.0f;
   EXPECT_NE(message(p).find("brsm_gbuffer_scale"), std::string::npos);
   p = VplParams{};
@@ -225,6 +230,36 @@ TEST(BrsmParamsCheck, BadValuesNameTheParameter) {
   p = VplParams{};
   p.brsm_maps = 0;
   EXPECT_NE(message(p).find("brsm_maps"), std::string::npos);
+}
+
+// brsm_resolution 0: the side follows the VPLs of the map that draws the most.
+TEST(BrsmAutoResolution, GivesTheMostDrawnMapItsTexelsPerVpl) {
+  auto side = [](std::vector<uint32_t> counts, float texels_per_vpl) {
+    std::vector<BrsmMap> maps(counts.size());
+    for (size_t i = 0; i < counts.size(); ++i) maps[i].vpl_count = counts[i];
+    return brsm_auto_resolution(maps, texels_per_vpl);
+  };
+  EXPECT_EQ(side({4096}, 1.0f), 64u);
+  EXPECT_EQ(side({4097}, 1.0f), 128u);
+  EXPECT_EQ(side({4096}, 4.0f), 128u);
+  EXPECT_EQ(side({1000, 50000, 3}, 1.0f), 256u) << "the largest map decides";
+  EXPECT_EQ(side({100000}, 1.0f), 512u);
+  EXPECT_EQ(side({100000}, 0.25f), 256u);
+  EXPECT_EQ(side({1}, 1.0f), 16u) << "at least 16";
+  EXPECT_EQ(side({4000000}, 16.0f), 4096u) << "at most 4096";
+  EXPECT_EQ(side({}, 1.0f), 16u);
+
+  // The plan takes it when brsm_resolution is 0 and keeps a given side; the record names it.
+  PreparedScene box(box_with_point_light());
+  const glsl::ViewParams view = scene_view(box.scene, 16, 16);
+  VplStats stats;
+  VplParams p = brsm_params(5000, 0);
+  BrsmPlan plan = brsm_plan(box.scene, box.lights->packed(), p, view, 1, true, EmissionFocus{}, stats);
+  EXPECT_EQ(plan.settings.resolution, 128u) << "one map of 5000 VPLs, one texel each";
+  EXPECT_EQ(stats.resolution, 128u);
+  p.brsm_resolution = 32;
+  EXPECT_EQ(brsm_plan(box.scene, box.lights->packed(), p, view, 1, true, EmissionFocus{}, stats).settings.resolution,
+            32u);
 }
 
 // ---- One-bounce light per image block ------------------------------------------------------

@@ -212,7 +212,8 @@ void execute_sequence_run(Scene& scene, const RunSpec& run, const FrameReference
                                   {"reference", reference.id},
                                   {"metrics", frame_metrics},
                                   {"metrics_raw", to_json(m_raw)},
-                                  {"stages", stage_statistics({f.result.timer})}});
+                                  {"stages", stage_statistics({f.result.timer})},
+                                  {"method_counters", out.method_counters}});
           if (!tally.previous.data.empty()) {
             tally.flicker += flicker_mse(tally.previous, out.color, tally.previous_reference, *reference.image);
             tally.flicker_raw += flicker_mse(tally.previous_raw, raw, tally.previous_reference, *reference.image);

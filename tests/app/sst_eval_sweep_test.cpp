@@ -209,6 +209,11 @@ TEST(SstEvalSweep, SequencesAreMeasuredFrameByFrameWithFlicker) {
     // FLIP per measured frame of the output, its median the run's.
     EXPECT_TRUE(run["frames"][0]["metrics"]["flip_hdr"].is_number());
     EXPECT_TRUE(run["metrics"]["flip_ldr"].is_number());
+    // Each frame's method counters; the run's are the last frame's.
+    EXPECT_EQ(run["frames"].back()["method_counters"], run["counters"]["method"]);
+    if (run["method"] == "sst") {
+      EXPECT_TRUE(run["frames"][0]["method_counters"].contains("nodes_visited_mean"));
+    }
     // Temporal reuse makes the output steadier than the raw frames it comes from.
     EXPECT_LT(run["flicker"].get<double>(), run["flicker_raw"].get<double>()) << run["id"];
     EXPECT_TRUE(fs::exists(dir / "out" / "runs" / run["id"].get<std::string>() / "image.exr"));

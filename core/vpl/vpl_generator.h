@@ -94,8 +94,9 @@ struct VplParams {
       "light ray and one potential VPL per texel");
     v("brsm_texels_per_vpl", brsm_texels_per_vpl,
       "brsm with brsm_resolution 0: the maps' side is the smallest power of two (16..4096) whose texels number at "
-      "least this many per VPL of the map that draws the most (with 4096 VPLs on two CPU cores, maps of 1-4 texels per "
-      "VPL had the lowest error at equal time: results/README.md, 'Map size at equal time')");
+      "least this many per VPL of the map that draws the most (on two CPU cores at equal time, about 1 was best at "
+      "4096 and 16k VPLs, but at 100k 64^2 maps beat the rule's larger ones: results/README.md, 'Map size against "
+      "the VPL count')");
     v("brsm_maps", brsm_maps,
       "brsm: the most maps; with more lights, consecutive lights of the power distribution share a map (each map "
       "holds about the same power, and its VPL count is in proportion to the power it holds)");

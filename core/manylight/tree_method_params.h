@@ -11,12 +11,13 @@
 namespace sst {
 
 // Where the node-distance floor starts to act (LightTreeParams::node_distance_floor_above), per
-// kind of walk: forced on at every extent measured (results/README.md, 'Large extents'), it
-// lowered the error of slc and sst, whose samples each walk the tree alone, from VPLs 2.9 view
-// lengths wide on, and raised slc's at 2.1 (sst's fell 4% there); the cut methods rtslc and hybrid
+// method: forced on at every extent measured (results/README.md, 'Large extents'), it lowered
+// slc's error from VPLs 2.9 view lengths wide on and raised it at 2.1 and 2.5; it lowered sst's at
+// every extent measured from 2.1 on (by 4% there, 10% at 2.5); the cut methods rtslc and hybrid
 // lost at 7.3 and 14.5 view lengths and gained from 145 on. The shared scenes' VPLs span 0.4-1.6
-// view lengths: neither threshold acts there.
-constexpr float kNodeFloorAboveForWalks = 2.5f;  // slc, sst
+// view lengths: no threshold acts there.
+constexpr float kNodeFloorAboveForSlc = 2.5f;
+constexpr float kNodeFloorAboveForSst = 2.0f;
 constexpr float kNodeFloorAboveForCuts = 50.0f;  // rtslc, hybrid
 
 struct TreeMethodParams {

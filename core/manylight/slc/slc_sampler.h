@@ -49,7 +49,7 @@ inline bool stop_at_leaves(const LightNode& node) { return node.is_leaf(); }
 
 // slc's parameters: the tree methods' (TreeMethodParams), with its own floor threshold.
 struct SlcParams : TreeMethodParams {
-  SlcParams() : TreeMethodParams(kNodeFloorAboveForWalks) {}
+  SlcParams() : TreeMethodParams(kNodeFloorAboveForSlc) {}
 };
 
 // Builds the frame's tree in prepare: stage "tree_build", counters["tree"] = kind and stats.

@@ -57,7 +57,7 @@ struct SstParams {
 };
 
 struct SstMethodParams {
-  TreeMethodParams tree_method{kNodeFloorAboveForWalks};
+  TreeMethodParams tree_method{kNodeFloorAboveForSst};
   SstParams sst;
   template <class V>
   void visit(V&& v) {

@@ -24,10 +24,8 @@ FrameOutput VulkanGi10::render(const RenderContext& context, const GpuRenderCont
   if (!direct_pipeline_) {
     timer.time("shader_compile", [&] {
       direct_pipeline_ = make_path_trace_pipeline(gpu.vulkan(), gpu.lights(), gpu.top_level());
-      for (uint32_t stage = 0; stage < GI10_STAGES; ++stage)
-        pipelines_.push_back(gpu.make_pipeline("gi10_" + std::to_string(stage),
-                                               uint32_t(GpuRenderContext::kSceneBufferCount + kBufferCount),
-                                               uint32_t(sizeof(glsl::Gi10Push))));
+      pipelines_.resize(GI10_SHADER_BUILDS);
+      for (uint32_t stage = 0; stage < GI10_STAGES; ++stage) pipelines_[stage] = make_stage_pipeline(stage);
     });
   }
   if (!parked_.empty()) {
@@ -93,7 +91,13 @@ std::vector<std::span<const uint8_t>> VulkanGi10::buffers() const { return byte_
 
 void VulkanGi10::begin_frame(const RenderContext&, const glsl::Gi10Frame& frame) {
   parity_ = frame.frame & 1u;
+  shade_build_ = glsl::gi10_shade_build(frame.flags);
   buffers_[kFrame]->upload(std::span<const glsl::Gi10Frame>(&frame, 1));
+}
+
+std::unique_ptr<ComputePipeline> VulkanGi10::make_stage_pipeline(uint32_t build) const {
+  return gpu_->make_pipeline("gi10_" + std::to_string(build), uint32_t(GpuRenderContext::kSceneBufferCount + kBufferCount),
+                             uint32_t(sizeof(glsl::Gi10Push)));
 }
 
 double VulkanGi10::run(uint32_t stage, uint32_t pass, uint32_t count) {
@@ -101,7 +105,11 @@ double VulkanGi10::run(uint32_t stage, uint32_t pass, uint32_t count) {
   glsl::Gi10Push push{stage, pass, count, 0u};
   uint32_t groups = (count + 63) / 64;
   uint32_t gx = std::min(groups, 65535u), gy = (groups + gx - 1) / gx;
-  return pipelines_.at(stage)->dispatch(bound_, &push, gx, gy);
+  // SHADE's path and ReSTIR builds are made when a frame first needs one, outside the stage's time.
+  uint32_t build = stage == GI10_STAGE_SHADE ? shade_build_ : stage;
+  std::unique_ptr<ComputePipeline>& pipeline = pipelines_.at(build);
+  if (!pipeline) pipeline = make_stage_pipeline(build);
+  return pipeline->dispatch(bound_, &push, gx, gy);
 }
 
 void VulkanGi10::clear_counters() { std::memset(buffers_[kCounters]->data(), 0, buffers_[kCounters]->size()); }

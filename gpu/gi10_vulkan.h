@@ -40,10 +40,15 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
 
   Gi10Method& method_;
   const GpuRenderContext* gpu_ = nullptr;
-  std::vector<std::unique_ptr<ComputePipeline>> pipelines_;  // one per stage, made on first use
+  std::unique_ptr<ComputePipeline> make_stage_pipeline(uint32_t build) const;
+
+  // One per shader build (GI10_SHADER_BUILDS): the stages' with the first frame, SHADE's others
+  // when a frame needs them.
+  std::vector<std::unique_ptr<ComputePipeline>> pipelines_;
   std::unique_ptr<ComputePipeline> direct_pipeline_;
   Gi10Sizes sizes_;
   uint32_t parity_ = 0;
+  uint32_t shade_build_ = GI10_STAGE_SHADE;  // the frame's build of SHADE (gi10_shade_build)
   // In binding order after the scene's: frame constants, then the buffers of gi10_stages.h.
   std::vector<std::unique_ptr<GpuBuffer>> buffers_;
   std::vector<const GpuBuffer*> bound_;

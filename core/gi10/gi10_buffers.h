@@ -40,6 +40,7 @@ namespace sst {
 using glsl::Gi10Frame;
 using glsl::Gi10Pixel;
 using glsl::Gi10Ray;
+using glsl::gi10_shade_build;
 }  // namespace sst
 #endif
 

@@ -273,10 +273,15 @@ SST_FUNC void gi_stage_shade(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CT
     GI_RAYS(index) = r;
     return;
   }
+#ifdef GI10_SHADER_STAGE
+  const uint build = GI10_SHADER_STAGE;  // a SHADE shader holds one way of shading
+#else
+  const uint build = gi10_shade_build(GF.flags);
+#endif
   vec3 lo;
   bool sampled;
-  if ((GF.flags & GI10_CACHE_PATHS) != 0u) sampled = gi_cache_path(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
-  else if ((GF.flags & GI10_WORLD_RESTIR) != 0u) sampled = gi_world_restir(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
+  if (build == GI10_SHADER_SHADE_PATHS) sampled = gi_cache_path(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
+  else if (build == GI10_SHADER_SHADE_RESTIR) sampled = gi_world_restir(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
   else sampled = gi_light_sample(SCENE_CTX LIGHT_CTX RAY_CTX GI_CTX index, r, lo);
   if (!sampled) {
     GI_RAYS(index) = r;

@@ -4,6 +4,7 @@
 // rays, and the layout of the buffers every stage reads (gi10_stages.h).
 #ifndef SST_CORE_GI10_GI10_LAYOUT_H
 #define SST_CORE_GI10_GI10_LAYOUT_H
+#include "core/math/cpu_gpu.h"
 #include "core/render/frame_layout.h"
 
 #ifdef __cplusplus
@@ -60,6 +61,14 @@ using glm::vec4;
 #define GI10_STAGE_SIDE_ALLOCATE 26u
 #define GI10_STAGE_SIDE_REORDER 27u
 #define GI10_STAGES 28u
+// SHADE's further shader builds (gpu/shaders/gi10.comp): build GI10_STAGE_SHADE shades a cache
+// point by one light sample, these two by a path (GI10_CACHE_PATHS) and by world-space ReSTIR
+// (GI10_WORLD_RESTIR); gi10_shade_build picks one. All three in one build made 1 MB of SPIR-V,
+// which lavapipe took about 170 s to compile on a test's first frame (the light-sample build
+// alone: 24 s for all stages).
+#define GI10_SHADER_SHADE_PATHS 28u
+#define GI10_SHADER_SHADE_RESTIR 29u
+#define GI10_SHADER_BUILDS 30u
 
 // Counters (Gi10 counters buffer, uint each).
 #define GI10_COUNT_PROBES 0u          // spawned probes traced
@@ -172,6 +181,12 @@ struct Gi10Push {
   uint count;  // invocations of the dispatch
   uint pad0;
 };
+
+// The shader build of SHADE for a frame's flags (GI10_SHADER_BUILDS).
+SST_FUNC uint gi10_shade_build(uint flags) {
+  if ((flags & GI10_CACHE_PATHS) != 0u) return GI10_SHADER_SHADE_PATHS;
+  return (flags & GI10_WORLD_RESTIR) != 0u ? GI10_SHADER_SHADE_RESTIR : GI10_STAGE_SHADE;
+}
 
 #ifdef __cplusplus
 }  // namespace sst::glsl

@@ -1,10 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // rayquery build (gpu/CMakeLists.txt)
-// variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27
+// variants: GI10_SHADER_STAGE 0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29
 // GI-1.0 on the GPU: the stages of core/gi10/gi10_stages.h, one invocation per element, as the
-// CPU's loops run them. Compiled once per stage (gi10_<GI10_STAGE_*>, gpu/CMakeLists.txt): in one
-// pipeline for all, llvmpipe paid every stage's local arrays in each invocation (7 us each).
+// CPU's loops run them. Compiled once per stage (gi10_<GI10_STAGE_*>, gpu/CMakeLists.txt), SHADE
+// twice more (GI10_SHADER_SHADE_*): in one pipeline for all, llvmpipe paid every stage's local
+// arrays in each invocation (7 us each).
 // Bindings: 0..4 scene (SCENE_BUFFERS), 5 BVH nodes, 6 BVH triangles, 7..12 lights
 // (LIGHT_BUFFERS), 13 the frame's Gi10Frame, 14..28 GI-1.0's buffers in the order of
 // gpu/gi10_vulkan.cpp (pixels, emission, mask, radiance, sh, spawn, rays, hash, values, accum,

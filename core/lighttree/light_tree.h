@@ -137,7 +137,7 @@ struct LightTreeParams {
     v("node_distance_floor_above", node_distance_floor_above,
       "the floor acts only when the diagonal of the VPLs' bounding box exceeds this many view lengths (twice the "
       "median distance from the camera to what it sees; the tree's counter vpl_view_lengths); 0: always. slc 2.5: "
-      "the floor lowered its error at every extent measured from 2.9 view lengths on and raised it at 2.1, 2.5 and "
+      "the floor lowered its error at every extent measured from 2.6 view lengths on and raised it at 2.1, 2.49 and "
       "in the breakfast room (0.7); sst 2: it lowered sst's from 2.1 on; rtslc and hybrid 50: it raised their "
       "error at 7.3 and 14.5 and lowered it at 145 and 1445 (results/README.md, 'Large extents')");
     v("leaves", leaves,

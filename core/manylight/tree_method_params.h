@@ -12,7 +12,7 @@ namespace sst {
 
 // Where the node-distance floor starts to act (LightTreeParams::node_distance_floor_above), per
 // method: forced on at every extent measured (results/README.md, 'Large extents'), it lowered
-// slc's error from VPLs 2.9 view lengths wide on and raised it at 2.1 and 2.5; it lowered sst's at
+// slc's error from VPLs 2.6 view lengths wide on and raised it at 2.1 and 2.5; it lowered sst's at
 // every extent measured from 2.1 on (by 4% there, 10% at 2.5); the cut methods rtslc and hybrid
 // lost at 7.3 and 14.5 view lengths and gained from 145 on. The shared scenes' VPLs span 0.4-1.6
 // view lengths: no threshold acts there.

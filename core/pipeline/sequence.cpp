@@ -100,7 +100,7 @@ class PostStages {
   }
 
  private:
-  const FrameRenderer& renderer_;
+  [[maybe_unused]] const FrameRenderer& renderer_;  // read only where the GPU is built in
   StageTimer& timer_;
 };
 

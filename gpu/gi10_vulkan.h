@@ -37,11 +37,11 @@ class VulkanGi10 final : public VulkanMethod, private Gi10Executor {
   // The buffers after the frame constants, as bytes in place, for `self` const or not.
   template <class Byte, class Self>
   static std::vector<std::span<Byte>> byte_views(Self& self);
+  // The pipeline of a shader build of gpu/shaders/gi10.comp (GI10_SHADER_BUILDS).
+  std::unique_ptr<ComputePipeline> make_stage_pipeline(uint32_t build) const;
 
   Gi10Method& method_;
   const GpuRenderContext* gpu_ = nullptr;
-  std::unique_ptr<ComputePipeline> make_stage_pipeline(uint32_t build) const;
-
   // One per shader build (GI10_SHADER_BUILDS): the stages' with the first frame, SHADE's others
   // when a frame needs them.
   std::vector<std::unique_ptr<ComputePipeline>> pipelines_;

@@ -8,15 +8,15 @@
 
 SST_BEGIN
 
-// Element `index` of stage `requested_stage` (GI10_STAGE_*): the one entry both backends call. `pass`: the
-// mask level of MASK_MIP, the direction of FILTER and FILTER_GI, the step of SIDE_LOOKUP and
-// SIDE_REORDER.
+// Element `index` of stage `requested_stage` (GI10_STAGE_*): the one entry both backends call.
+// `pass`: the mask level of MASK_MIP, the direction of FILTER and FILTER_GI, the step of
+// SIDE_LOOKUP and SIDE_REORDER.
 SST_FUNC void gi10_stage(SCENE_CTX_PARAM LIGHT_CTX_PARAM RAY_CTX_PARAM GI_CTX_PARAM uint requested_stage, uint pass,
                          uint index) {
 #ifdef GI10_SHADER_STAGE
   // A shader built for one stage (gpu/shaders/gi10.comp) compares a constant, so that its front end
   // drops the other stages before glslc's optimiser inlines them: with all 27 inlined and then
-  // removed, a stage took 6-12 s to compile instead of under 1 s, for the same SPIR-V.
+  // removed, a stage took 6-10 s to compile instead of under 1 s, for SPIR-V of the same size.
   const uint stage = GI10_SHADER_STAGE < GI10_STAGES ? GI10_SHADER_STAGE : GI10_STAGE_SHADE;
 #else
   const uint stage = requested_stage;
